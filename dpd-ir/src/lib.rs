@@ -1,0 +1,7 @@
+//! The splitting-scheme language of dpd: parser, intermediate representation and order
+//! analysis. Dependency-light on purpose: the `dpd_scheme!` macro runs this code at expansion
+//! time, and the run-time crates use the same code for schemes given as strings.
+
+pub mod program;
+
+pub use program::{Coeff, Flow, Stage, SweepOrder};
