@@ -2,6 +2,8 @@
 //! analysis. Dependency-light on purpose: the `dpd_scheme!` macro runs this code at expansion
 //! time, and the run-time crates use the same code for schemes given as strings.
 
+pub mod analysis;
+pub mod lang;
 pub mod program;
 
 pub use program::{Coeff, Flow, Stage, SweepOrder};

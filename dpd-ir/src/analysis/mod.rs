@@ -1,0 +1,1 @@
+//! Order analysis of a flattened scheme (algorithms.md section 4).

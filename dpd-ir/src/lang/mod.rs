@@ -1,0 +1,1 @@
+//! The scheme language: grammar, parser, expansion to a flattened program.
