@@ -8,6 +8,7 @@
 
 use num_rational::BigRational;
 use serde::{Deserialize, Serialize};
+use std::fmt;
 
 /// A sub-flow of the DPD dynamics (algorithms.md section 2).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -64,6 +65,18 @@ pub enum SweepOrder {
     Reverse,
 }
 
+impl SweepOrder {
+    /// The default order of the `k`-th successive sweep of a step (from 0): Forward, Reverse,
+    /// Forward, ... so that repeated sweeps mirror each other.
+    pub fn alternating(k: usize) -> SweepOrder {
+        if k % 2 == 0 {
+            SweepOrder::Forward
+        } else {
+            SweepOrder::Reverse
+        }
+    }
+}
+
 /// A step-length coefficient: the step length of a stage is `value * dt`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Coeff {
@@ -86,4 +99,148 @@ pub struct Stage {
     pub stream: u8,
     /// Visiting order of a successive sweep (`Forward` for all other flows).
     pub order: SweepOrder,
+}
+
+/// A compiled scheme: the stages of one step, as run.
+///
+/// `stages` is the sequence after merging adjacent applications of A, B and F (and dropping
+/// those with a zero coefficient); `unmerged_stages` is the sequence as written and expanded,
+/// for the order analysis. Random streams are numbered separately in each sequence, by the
+/// same rule; sweep orders are the same in both (sweeps never merge).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Program {
+    /// The scheme as written.
+    pub source: String,
+    pub stages: Vec<Stage>,
+    pub unmerged_stages: Vec<Stage>,
+}
+
+/// Relative tolerance of [`Program::is_symmetric`] for coefficients that are not exact.
+pub const SYMMETRY_TOLERANCE: f64 = 1e-14;
+
+/// Work of one step in the cyclic steady state (the step repeated, evaluations reused across
+/// the step boundary).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Evaluations {
+    /// Force evaluations: conservative (for B), full (for F), and one per T sweep.
+    pub force: usize,
+    /// Pair-distance (geometry) evaluations.
+    pub pair_distance: usize,
+}
+
+impl Program {
+    /// Evaluations per step under the run-time caching rules of `dpd-core`: A moves the
+    /// particles and invalidates every cache; B, O, Ob, T and F need the pair geometry of the
+    /// current positions; B needs a conservative-force evaluation and F a full-force
+    /// evaluation of the current positions, each cached until positions change; every T sweep
+    /// evaluates the conservative pair force inline.
+    pub fn evaluations_per_step(&self) -> Evaluations {
+        #[derive(Default)]
+        struct Cache {
+            geometry: bool,
+            conservative: bool,
+            full: bool,
+        }
+        let mut cache = Cache::default();
+        let mut count = Evaluations::default();
+        // The first pass reaches the steady state; the second one is counted.
+        for _pass in 0..2 {
+            count = Evaluations::default();
+            for stage in &self.stages {
+                if stage.flow.moves_positions() {
+                    cache = Cache::default();
+                    continue;
+                }
+                if !cache.geometry {
+                    cache.geometry = true;
+                    count.pair_distance += 1;
+                }
+                let force = match stage.flow {
+                    Flow::B => !std::mem::replace(&mut cache.conservative, true),
+                    Flow::F => !std::mem::replace(&mut cache.full, true),
+                    Flow::T => true,
+                    _ => false,
+                };
+                count.force += usize::from(force);
+            }
+        }
+        count
+    }
+
+    /// Force evaluations per step, see [`Program::evaluations_per_step`].
+    pub fn force_evaluations_per_step(&self) -> usize {
+        self.evaluations_per_step().force
+    }
+
+    /// Pair-distance evaluations per step, see [`Program::evaluations_per_step`].
+    pub fn pair_distance_evaluations_per_step(&self) -> usize {
+        self.evaluations_per_step().pair_distance
+    }
+
+    /// Whether the merged step reads the same backwards: mirrored stages have the same flow
+    /// and coefficient (equal when both are exact, else within [`SYMMETRY_TOLERANCE`]
+    /// relative), and mirrored successive sweeps run in opposite orders (the adjoint of a
+    /// sweep is the reversed sweep). A single central sweep is its own mirror and counts as
+    /// symmetric in either order. Random streams are ignored.
+    pub fn is_symmetric(&self) -> bool {
+        let n = self.stages.len();
+        self.stages
+            .iter()
+            .zip(self.stages.iter().rev())
+            .take(n / 2)
+            .all(|(a, b)| {
+                a.flow == b.flow
+                    && coeffs_equal(&a.coeff, &b.coeff)
+                    && (!a.flow.is_successive_sweep() || a.order != b.order)
+            })
+    }
+}
+
+fn coeffs_equal(a: &Coeff, b: &Coeff) -> bool {
+    match (&a.exact, &b.exact) {
+        (Some(x), Some(y)) => x == y,
+        _ => (a.value - b.value).abs() <= SYMMETRY_TOLERANCE * a.value.abs().max(b.value.abs()),
+    }
+}
+
+impl fmt::Display for Coeff {
+    /// Exact values as fractions (`1/2`, `-3`), others with round-trip precision.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match &self.exact {
+            Some(r) => write!(f, "{r}"),
+            None => write!(f, "{:?}", self.value),
+        }
+    }
+}
+
+impl fmt::Display for Program {
+    /// The merged stages in the scheme language, e.g. `A(1/2) B(1/2) O(1) B(1/2) A(1/2)`.
+    /// A sweep whose order differs from the default alternation is marked `<` (reverse) or
+    /// `>` (forward), so the output compiles back to the same stages (except the shared
+    /// noise of PRK tables). The alternate form `{:#}` marks the order of every sweep and the
+    /// random stream of every stochastic stage: `O>(1)@0`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let mut sweeps = 0;
+        for (i, stage) in self.stages.iter().enumerate() {
+            if i > 0 {
+                f.write_str(" ")?;
+            }
+            f.write_str(crate::lang::letters::spelling(stage.flow))?;
+            if stage.flow.is_successive_sweep() {
+                let default = SweepOrder::alternating(sweeps);
+                sweeps += 1;
+                if f.alternate() || stage.order != default {
+                    f.write_str(match stage.order {
+                        SweepOrder::Forward => ">",
+                        SweepOrder::Reverse => "<",
+                    })?;
+                }
+            }
+            write!(f, "({})", stage.coeff)?;
+            if f.alternate() && stage.flow.is_stochastic() {
+                write!(f, "@{}", stage.stream)?;
+            }
+        }
+        Ok(())
+    }
 }

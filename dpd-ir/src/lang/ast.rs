@@ -1,0 +1,94 @@
+//! The parsed scheme, before names are resolved. Every node keeps its source span.
+
+use crate::program::{Flow, SweepOrder};
+use std::ops::Range;
+
+pub type Span = Range<usize>;
+
+/// A binary operator of a coefficient expression.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BinOp {
+    Add,
+    Sub,
+    Mul,
+    Div,
+    Pow,
+}
+
+/// A coefficient expression.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Expr {
+    Number(String, Span),
+    /// A constant or a parameter.
+    Name(String, Span),
+    Neg(Box<Expr>, Span),
+    Binary(BinOp, Box<Expr>, Box<Expr>, Span),
+    /// A function of one argument (`sqrt`, `cbrt`).
+    Call(String, Box<Expr>, Span),
+}
+
+impl Expr {
+    pub fn span(&self) -> Span {
+        match self {
+            Expr::Number(_, s)
+            | Expr::Name(_, s)
+            | Expr::Neg(_, s)
+            | Expr::Binary(_, _, _, s)
+            | Expr::Call(_, _, s) => s.clone(),
+        }
+    }
+}
+
+/// An application of a letter or a sub-scheme: `O<(1/2)`, `S(x1)`, `BAB`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Apply {
+    pub name: String,
+    pub name_span: Span,
+    /// Explicit sweep order (`<` or `>` after the name).
+    pub order: Option<SweepOrder>,
+    /// `None` when written without parentheses.
+    pub args: Option<Vec<Expr>>,
+    pub span: Span,
+}
+
+/// A partitioned Runge-Kutta table `prk(b = [...], bh = [...], kick = F)`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Prk {
+    pub b: Vec<Expr>,
+    pub bh: Vec<Expr>,
+    /// `F` (full force, frozen noise) or `B` (conservative kick).
+    pub kick: Flow,
+    pub span: Span,
+}
+
+/// One element of a step sequence.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Step {
+    Apply(Apply),
+    Prk(Prk),
+}
+
+/// `let name = value;`
+#[derive(Clone, Debug, PartialEq)]
+pub struct Let {
+    pub name: String,
+    pub name_span: Span,
+    pub value: Expr,
+}
+
+/// `def Name(params) = body;`
+#[derive(Clone, Debug, PartialEq)]
+pub struct Def {
+    pub name: String,
+    pub name_span: Span,
+    pub params: Vec<(String, Span)>,
+    pub body: Vec<Step>,
+}
+
+/// A whole scheme source: its definitions and the step sequence.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Script {
+    pub lets: Vec<Let>,
+    pub defs: Vec<Def>,
+    pub steps: Vec<Step>,
+}

@@ -1,0 +1,353 @@
+//! Name resolution and expansion of a parsed scheme into the flat sequence of applications,
+//! including the default (implicit) step lengths.
+
+use super::ast::{Apply, Def, Prk, Script, Span, Step};
+use super::diagnostic::{position, Diagnostic};
+use super::expr::{eval, Scope, FUNCTIONS};
+use super::letters::{letter, spellings};
+use super::value::Value;
+use crate::program::{Flow, SweepOrder};
+use std::collections::{BTreeMap, HashMap};
+
+/// Deepest chain of sub-scheme calls.
+pub const MAX_CALL_DEPTH: usize = 32;
+/// Most sub-flow applications one step may expand to.
+pub const MAX_APPLICATIONS: usize = 10_000;
+
+/// Words that cannot name a constant.
+const RESERVED: [&str; 3] = ["let", "def", "prk"];
+
+/// One sub-flow application of the flattened step.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Application {
+    pub flow: Flow,
+    pub coeff: Value,
+    /// Sweep order written in the scheme (`O<`, `O>`), if any.
+    pub order: Option<SweepOrder>,
+    /// Frozen-noise group: applications with the same group share one random stream.
+    pub noise: Option<usize>,
+    /// The top-level item of the scheme this application comes from.
+    pub span: Span,
+}
+
+/// Expands `script`, whose names may refer to the definitions of `prelude` (which `script`
+/// may shadow). Returns the applications in order, with implicit coefficients filled in.
+pub fn expand(
+    src: &str,
+    script: &Script,
+    prelude: &Script,
+) -> Result<Vec<Application>, Vec<Diagnostic>> {
+    let mut x = Expander {
+        src,
+        consts: BTreeMap::new(),
+        defs: BTreeMap::new(),
+        out: Vec::new(),
+        errors: Vec::new(),
+        stack: Vec::new(),
+        next_noise: 0,
+    };
+    x.define(prelude, true);
+    x.define(script, false);
+    for step in &script.steps {
+        x.step(step, &[], step_span(step), false);
+    }
+    if !x.errors.is_empty() {
+        return Err(x.errors);
+    }
+    fill_implicit(x.out).map_err(|e| vec![e])
+}
+
+fn step_span(step: &Step) -> Span {
+    match step {
+        Step::Apply(a) => a.span.clone(),
+        Step::Prk(p) => p.span.clone(),
+    }
+}
+
+/// An application whose coefficient is still a placeholder unless `explicit`.
+struct Pending {
+    app: Application,
+    explicit: bool,
+}
+
+struct Expander<'a> {
+    src: &'a str,
+    consts: BTreeMap<String, Value>,
+    /// Sub-schemes, with whether they come from the prelude.
+    defs: BTreeMap<String, (&'a Def, bool)>,
+    out: Vec<Pending>,
+    errors: Vec<Diagnostic>,
+    /// Names of the sub-schemes being expanded, outermost first.
+    stack: Vec<String>,
+    next_noise: usize,
+}
+
+impl<'a> Expander<'a> {
+    /// Records the constants and sub-schemes of `script`; `builtin` ones may be shadowed.
+    fn define(&mut self, script: &'a Script, builtin: bool) {
+        let mut user_consts: Vec<&str> = Vec::new();
+        for l in &script.lets {
+            if RESERVED.contains(&l.name.as_str()) || FUNCTIONS.iter().any(|(f, _)| *f == l.name) {
+                self.errors.push(Diagnostic::new(
+                    format!("'{}' is reserved and cannot name a constant", l.name),
+                    l.name_span.clone(),
+                ));
+                continue;
+            }
+            if user_consts.contains(&l.name.as_str()) {
+                self.errors.push(Diagnostic::new(
+                    format!("constant '{}' is defined twice", l.name),
+                    l.name_span.clone(),
+                ));
+                continue;
+            }
+            user_consts.push(&l.name);
+            let scope = Scope {
+                params: &[],
+                consts: &self.consts,
+            };
+            match eval(&l.value, &scope) {
+                Ok(v) => {
+                    self.consts.insert(l.name.clone(), v);
+                }
+                Err(e) => self.errors.push(e),
+            }
+        }
+        let mut user_defs: Vec<&str> = Vec::new();
+        for d in &script.defs {
+            let problem = if letter(&d.name).is_some() {
+                Some(format!(
+                    "'{}' is a sub-flow letter and cannot be redefined",
+                    d.name
+                ))
+            } else if user_defs.contains(&d.name.as_str()) {
+                Some(format!("sub-scheme '{}' is defined twice", d.name))
+            } else {
+                d.params
+                    .iter()
+                    .enumerate()
+                    .find(|(i, (p, _))| d.params[..*i].iter().any(|(q, _)| q == p))
+                    .map(|(_, (p, _))| format!("parameter '{p}' of '{}' is listed twice", d.name))
+            };
+            if let Some(message) = problem {
+                self.errors
+                    .push(Diagnostic::new(message, d.name_span.clone()));
+                continue;
+            }
+            user_defs.push(&d.name);
+            self.defs.insert(d.name.clone(), (d, builtin));
+        }
+    }
+
+    /// Expands one step. `site` is the span of the top-level item being expanded; inside
+    /// prelude definitions (`builtin`) every error points there.
+    fn step(&mut self, step: &Step, params: &[(String, Value)], site: Span, builtin: bool) {
+        let result = match step {
+            Step::Apply(a) => self.apply(a, params, &site, builtin),
+            Step::Prk(p) => self.prk(p, params, &site),
+        };
+        if let Err(mut e) = result {
+            if builtin {
+                e.span = site;
+            }
+            self.errors.push(e);
+        }
+    }
+
+    fn push(&mut self, app: Application, explicit: bool) -> Result<(), Diagnostic> {
+        if self.out.len() >= MAX_APPLICATIONS {
+            return Err(Diagnostic::new(
+                format!("scheme expands to more than {MAX_APPLICATIONS} sub-flow applications"),
+                app.span,
+            ));
+        }
+        self.out.push(Pending { app, explicit });
+        Ok(())
+    }
+
+    fn apply(
+        &mut self,
+        a: &Apply,
+        params: &[(String, Value)],
+        site: &Span,
+        builtin: bool,
+    ) -> Result<(), Diagnostic> {
+        let args = self.args(a, params)?;
+        if let Some(l) = letter(&a.name) {
+            if a.order.is_some() && !l.flow.is_successive_sweep() {
+                return Err(Diagnostic::new(
+                    format!(
+                        "sweep order '<' or '>' only applies to the successive sweeps O, Ob and T, not to {}",
+                        a.name
+                    ),
+                    a.span.clone(),
+                ));
+            }
+            let coeff = match args.as_deref() {
+                None => None,
+                Some([c]) => Some(c.clone()),
+                Some(more) => {
+                    return Err(Diagnostic::new(
+                        format!(
+                            "wrong number of arguments: {} takes one coefficient, found {}",
+                            a.name,
+                            more.len()
+                        ),
+                        a.span.clone(),
+                    ))
+                }
+            };
+            let explicit = coeff.is_some();
+            let app = Application {
+                flow: l.flow,
+                coeff: coeff.unwrap_or(Value::int(0)),
+                order: a.order,
+                noise: None,
+                span: site.clone(),
+            };
+            return self.push(app, explicit);
+        }
+        let Some(&(def, def_builtin)) = self.defs.get(&a.name) else {
+            let defined: Vec<&str> = self.defs.keys().map(String::as_str).collect();
+            return Err(Diagnostic::new(
+                format!(
+                    "unknown sub-flow '{}' at position {}; expected one of {}, {} or a defined name",
+                    a.name,
+                    position(self.src, a.name_span.start),
+                    spellings(),
+                    defined.join(", ")
+                ),
+                a.name_span.clone(),
+            ));
+        };
+        if a.order.is_some() {
+            return Err(Diagnostic::new(
+                format!(
+                    "sweep order '<' or '>' applies to letters, not to the sub-scheme {}",
+                    a.name
+                ),
+                a.span.clone(),
+            ));
+        }
+        let args = args.unwrap_or_default();
+        if args.len() != def.params.len() {
+            let names: Vec<&str> = def.params.iter().map(|(p, _)| p.as_str()).collect();
+            return Err(Diagnostic::new(
+                format!(
+                    "wrong number of arguments: {}({}) takes {}, found {}",
+                    a.name,
+                    names.join(", "),
+                    def.params.len(),
+                    args.len()
+                ),
+                a.span.clone(),
+            ));
+        }
+        if self.stack.contains(&a.name) {
+            return Err(Diagnostic::new(
+                format!(
+                    "recursive sub-scheme: {} -> {}",
+                    self.stack.join(" -> "),
+                    a.name
+                ),
+                a.name_span.clone(),
+            ));
+        }
+        if self.stack.len() >= MAX_CALL_DEPTH {
+            return Err(Diagnostic::new(
+                format!("sub-schemes nested more than {MAX_CALL_DEPTH} deep"),
+                a.name_span.clone(),
+            ));
+        }
+        let bound: Vec<(String, Value)> = def
+            .params
+            .iter()
+            .map(|(p, _)| p.clone())
+            .zip(args)
+            .collect();
+        self.stack.push(a.name.clone());
+        for step in &def.body {
+            self.step(step, &bound, site.clone(), builtin || def_builtin);
+        }
+        self.stack.pop();
+        Ok(())
+    }
+
+    /// The evaluated arguments of `a`, `None` without parentheses.
+    fn args(
+        &self,
+        a: &Apply,
+        params: &[(String, Value)],
+    ) -> Result<Option<Vec<Value>>, Diagnostic> {
+        let scope = Scope {
+            params,
+            consts: &self.consts,
+        };
+        a.args
+            .as_ref()
+            .map(|args| args.iter().map(|e| eval(e, &scope)).collect())
+            .transpose()
+    }
+
+    fn prk(&mut self, p: &Prk, params: &[(String, Value)], site: &Span) -> Result<(), Diagnostic> {
+        let scope = Scope {
+            params,
+            consts: &self.consts,
+        };
+        let b =
+            p.b.iter()
+                .map(|e| eval(e, &scope))
+                .collect::<Result<Vec<_>, _>>()?;
+        let bh =
+            p.bh.iter()
+                .map(|e| eval(e, &scope))
+                .collect::<Result<Vec<_>, _>>()?;
+        let noise = (p.kick == Flow::F).then(|| {
+            self.next_noise += 1;
+            self.next_noise
+        });
+        for (kick, drift) in b.into_iter().zip(bh) {
+            for (flow, coeff, noise) in [(p.kick, kick, noise), (Flow::A, drift, None)] {
+                let app = Application {
+                    flow,
+                    coeff,
+                    order: None,
+                    noise,
+                    span: site.clone(),
+                };
+                self.push(app, true)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Gives every implicit application of a flow an equal share of what the explicit
+/// applications of that flow leave of 1.
+fn fill_implicit(pending: Vec<Pending>) -> Result<Vec<Application>, Diagnostic> {
+    let mut shares = HashMap::new();
+    for flow in Flow::ALL {
+        let of_flow = || pending.iter().filter(|p| p.app.flow == flow);
+        let Some(first) = of_flow().find(|p| !p.explicit) else {
+            continue;
+        };
+        let at = |m: String| Diagnostic::new(m, first.app.span.clone());
+        let mut rest = Value::int(1);
+        for p in of_flow().filter(|p| p.explicit) {
+            rest = rest.sub(&p.app.coeff).map_err(at)?;
+        }
+        let implicit = of_flow().filter(|p| !p.explicit).count();
+        let count = Value::int(i64::try_from(implicit).unwrap_or(i64::MAX));
+        shares.insert(flow, rest.div(&count).map_err(at)?);
+    }
+    Ok(pending
+        .into_iter()
+        .map(|p| {
+            let mut app = p.app;
+            if let (false, Some(share)) = (p.explicit, shares.get(&app.flow)) {
+                app.coeff = share.clone();
+            }
+            app
+        })
+        .collect())
+}

@@ -1,0 +1,112 @@
+//! Lowering of validated applications to a [`Program`]: sweep orders, merging, streams.
+
+use super::diagnostic::Diagnostic;
+use super::expand::Application;
+use crate::program::{Flow, Program, Stage, SweepOrder};
+use std::collections::HashMap;
+
+/// Most random streams one step may use (stream numbers are `u8`).
+pub const MAX_STREAMS: usize = 255;
+
+/// The program of the validated applications `apps` of `source`.
+pub fn lower(source: &str, apps: Vec<Application>) -> Result<Program, Vec<Diagnostic>> {
+    let apps = with_sweep_orders(apps);
+    let unmerged_stages = stages(&apps)?;
+    let stages = stages(&merge(apps)?)?;
+    Ok(Program {
+        source: source.to_string(),
+        stages,
+        unmerged_stages,
+    })
+}
+
+/// Successive sweeps without an explicit order alternate Forward, Reverse, Forward, ... in
+/// order of appearance (counting all O, Ob and T sweeps of the step); other flows are Forward.
+fn with_sweep_orders(mut apps: Vec<Application>) -> Vec<Application> {
+    let mut sweeps = 0;
+    for a in &mut apps {
+        if a.flow.is_successive_sweep() {
+            a.order = Some(a.order.unwrap_or(SweepOrder::alternating(sweeps)));
+            sweeps += 1;
+        } else {
+            a.order = Some(SweepOrder::Forward);
+        }
+    }
+    apps
+}
+
+/// Whether two adjacent applications of `flow` are one application of the summed length:
+/// drifts commute, and a kick reuses its force while positions do not change. Sweeps never
+/// merge: each is a separate pass with its own random stream.
+fn merges(flow: Flow) -> bool {
+    !flow.is_successive_sweep()
+}
+
+/// Merges adjacent applications of the same merging flow and drops those left with a zero
+/// coefficient (which may make their neighbours adjacent). A merged F keeps the noise of its
+/// first part, as the force evaluation (noise included) is reused.
+fn merge(apps: Vec<Application>) -> Result<Vec<Application>, Vec<Diagnostic>> {
+    let mut merged: Vec<Application> = Vec::with_capacity(apps.len());
+    for a in apps {
+        match merged.last_mut() {
+            Some(top) if top.flow == a.flow && merges(a.flow) => {
+                top.coeff = top
+                    .coeff
+                    .add(&a.coeff)
+                    .map_err(|m| vec![Diagnostic::new(m, a.span.clone())])?;
+                top.span = top.span.start.min(a.span.start)..top.span.end.max(a.span.end);
+            }
+            _ => merged.push(a),
+        }
+        if merged
+            .last()
+            .is_some_and(|t| t.coeff.is_zero() && merges(t.flow))
+        {
+            merged.pop();
+        }
+    }
+    Ok(merged)
+}
+
+/// Stages of `apps`: each stochastic application takes the next random stream, except that
+/// applications of one frozen-noise group share the stream of the group's first one.
+fn stages(apps: &[Application]) -> Result<Vec<Stage>, Vec<Diagnostic>> {
+    let mut next = 0usize;
+    let mut groups: HashMap<usize, u8> = HashMap::new();
+    let mut errors = Vec::new();
+    let mut out = Vec::with_capacity(apps.len());
+    for a in apps {
+        let mut stream = 0;
+        if a.flow.is_stochastic() {
+            if let Some(&s) = a.noise.and_then(|g| groups.get(&g)) {
+                stream = s;
+            } else if let Some(s) = u8::try_from(next).ok().filter(|_| next < MAX_STREAMS) {
+                stream = s;
+                next += 1;
+                if let Some(g) = a.noise {
+                    groups.insert(g, s);
+                }
+            } else {
+                errors.push(Diagnostic::new(
+                    format!("scheme needs more than {MAX_STREAMS} random streams per step"),
+                    a.span.clone(),
+                ));
+                break;
+            }
+        }
+        match a.coeff.to_coeff() {
+            Ok(coeff) => out.push(Stage {
+                flow: a.flow,
+                coeff,
+                stream,
+                order: a.order.unwrap_or_default(),
+            }),
+            Err(m) => errors.push(Diagnostic::new(m, a.span.clone())),
+        }
+    }
+    if errors.is_empty() {
+        Ok(out)
+    } else {
+        Err(errors)
+    }
+}

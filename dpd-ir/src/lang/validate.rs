@@ -1,0 +1,128 @@
+//! Checks of an expanded scheme. Each check is a small function saying why the rule exists.
+
+use super::ast::Span;
+use super::diagnostic::Diagnostic;
+use super::expand::Application;
+use super::letters::spelling;
+use super::value::Value;
+use super::Options;
+use crate::program::Flow;
+use num_traits::One;
+
+/// Tolerance of the consistency check when a coefficient sum is not exact.
+pub const SUM_TOLERANCE: f64 = 1e-12;
+
+/// Every problem of `apps`, a scheme of source length `len`.
+pub fn validate(apps: &[Application], len: usize, options: &Options) -> Vec<Diagnostic> {
+    let whole = 0..len;
+    if apps.is_empty() {
+        return vec![Diagnostic::new(
+            "empty scheme: write the sub-flows of one step, e.g. ABOBA",
+            whole,
+        )];
+    }
+    let mut errors = Vec::new();
+    errors.extend(stochastic_steps_positive(apps));
+    errors.extend(has_drift(apps, &whole));
+    errors.extend(has_conservative_force(apps, &whole));
+    if !options.allow_inconsistent {
+        errors.extend(consistent(apps));
+    }
+    errors
+}
+
+/// O, Ob and T cannot run backwards: the variance factor 1 - exp(-2 tau h) of the exact OU
+/// step turns negative for h < 0, and a zero step is a wasted sweep.
+fn stochastic_steps_positive(apps: &[Application]) -> Vec<Diagnostic> {
+    apps.iter()
+        .filter(|a| a.flow.needs_positive_step() && !a.coeff.is_positive())
+        .map(|a| {
+            Diagnostic::new(
+                format!(
+                    "{} is a stochastic sweep and cannot run backwards: its coefficient must be positive, found {}",
+                    spelling(a.flow),
+                    a.coeff
+                ),
+                a.span.clone(),
+            )
+        })
+        .collect()
+}
+
+/// Without a drift the particles never move.
+fn has_drift(apps: &[Application], whole: &Span) -> Option<Diagnostic> {
+    (!apps.iter().any(|a| a.flow == Flow::A)).then(|| {
+        Diagnostic::new(
+            "scheme has no drift: it needs an A (or a sub-scheme or prk table containing one)",
+            whole.clone(),
+        )
+    })
+}
+
+/// Without B, T or F the conservative force is never applied.
+fn has_conservative_force(apps: &[Application], whole: &Span) -> Option<Diagnostic> {
+    (!apps.iter().any(|a| carries(Generator::B, a.flow))).then(|| {
+        Diagnostic::new(
+            "scheme has no conservative force: it needs a B, T or F",
+            whole.clone(),
+        )
+    })
+}
+
+/// The generators of the DPD dynamics (algorithms.md section 4).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Generator {
+    A,
+    B,
+    O,
+}
+
+/// Whether `flow` advances generator `g` (T and F carry both B and O).
+fn carries(g: Generator, flow: Flow) -> bool {
+    match g {
+        Generator::A => flow == Flow::A,
+        Generator::B => matches!(flow, Flow::B | Flow::T | Flow::F),
+        Generator::O => flow.is_stochastic(),
+    }
+}
+
+/// First-order consistency: the step lengths of each generator add up to one step. A scheme
+/// without any stochastic flow is a deterministic (Hamiltonian) scheme; its O sum is not
+/// checked.
+fn consistent(apps: &[Application]) -> Vec<Diagnostic> {
+    let mut errors = Vec::new();
+    for (g, carriers) in [
+        (Generator::A, "A"),
+        (Generator::B, "B, T and F"),
+        (Generator::O, "O, Ob, T and F"),
+    ] {
+        let of_g: Vec<&Application> = apps.iter().filter(|a| carries(g, a.flow)).collect();
+        let (Some(first), Some(last)) = (of_g.first(), of_g.last()) else {
+            continue;
+        };
+        let span = first.span.start..last.span.end;
+        let mut sum = Value::int(0);
+        for a in &of_g {
+            match sum.add(&a.coeff) {
+                Ok(s) => sum = s,
+                Err(m) => {
+                    errors.push(Diagnostic::new(m, span.clone()));
+                    break;
+                }
+            }
+        }
+        let one = match &sum {
+            Value::Exact(r) => r.is_one(),
+            Value::Float(x) => (x - 1.0).abs() <= SUM_TOLERANCE,
+        };
+        if !one {
+            errors.push(Diagnostic::new(
+                format!(
+                    "inconsistent scheme: the {g:?} coefficients ({carriers} stages) sum to {sum}, not 1; pass allow_inconsistent to accept it anyway"
+                ),
+                span,
+            ));
+        }
+    }
+    errors
+}
