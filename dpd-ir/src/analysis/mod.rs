@@ -1,1 +1,101 @@
 //! Order analysis of a flattened scheme (algorithms.md section 4).
+//!
+//! [`analyse`] reports consistency, the deterministic order of the Hamiltonian part and a bound
+//! on the order of the invariant measure, from the stages of one step (application order, left
+//! first). Both orders come from one hand-written truncated free associative algebra
+//! (module `algebra`; no crate provides non-commutative power series), over exact rationals when
+//! every coefficient is exact and over `f64` otherwise (module `scalar`).
+
+mod algebra;
+mod consistency;
+mod hamiltonian;
+mod invariant;
+mod prk;
+mod report;
+mod scalar;
+
+pub use consistency::{CoefficientSums, CONSISTENCY_TOLERANCE};
+pub use prk::{prk3_conditions, prk_order, prk_stages};
+pub use report::Analysis;
+pub use scalar::FLOAT_TOLERANCE;
+
+use crate::program::Stage;
+use scalar::{Rational, Scalar};
+
+/// Limits of an analysis. Values are clamped to the documented ranges, which keep the work
+/// bounded for any input.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Options {
+    /// Highest word length compared for the deterministic order (1..=12, default 8).
+    pub max_degree: u32,
+    /// Highest `n` for which `L_n` is checked by the invariant-measure criterion (1..=5,
+    /// default 4).
+    pub max_invariant_order: u32,
+    /// Number `K` of non-commuting pair generators modelling a pair sweep (2..=3, default 2).
+    pub pairs: usize,
+    /// Use `f64` even when every coefficient is exact (faster, for bulk enumeration).
+    pub force_float: bool,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            max_degree: 8,
+            max_invariant_order: 4,
+            pairs: 2,
+            force_float: false,
+        }
+    }
+}
+
+/// Analyses one step with the default [`Options`].
+pub fn analyse(stages: &[Stage]) -> Analysis {
+    analyse_with(stages, &Options::default())
+}
+
+/// Analyses one step (stages in application order, left first).
+pub fn analyse_with(stages: &[Stage], options: &Options) -> Analysis {
+    let options = Options {
+        max_degree: options.max_degree.clamp(1, 12),
+        max_invariant_order: options.max_invariant_order.clamp(1, 5),
+        pairs: options.pairs.clamp(2, 3),
+        force_float: options.force_float,
+    };
+    match exact_coefficients(stages).filter(|_| !options.force_float) {
+        Some(coeffs) => analyse_in(stages, &coeffs, &options),
+        None => {
+            let coeffs: Vec<f64> = stages.iter().map(|s| s.coeff.value).collect();
+            analyse_in(stages, &coeffs, &options)
+        }
+    }
+}
+
+/// The exact coefficients, if every stage has one.
+fn exact_coefficients(stages: &[Stage]) -> Option<Vec<Rational>> {
+    stages
+        .iter()
+        .map(|s| s.coeff.exact.as_ref().and_then(Rational::from_big))
+        .collect()
+}
+
+fn analyse_in<S: Scalar>(stages: &[Stage], coeffs: &[S], options: &Options) -> Analysis {
+    let (coefficient_sums, consistent) = consistency::coefficient_sums(stages, coeffs);
+    let factors = hamiltonian::hamiltonian_factors(stages, coeffs);
+    let det = hamiltonian::deterministic_order(&factors, options.max_degree);
+    let inv = invariant::invariant_measure_bound(
+        stages,
+        coeffs,
+        options.pairs,
+        options.max_invariant_order,
+    );
+    Analysis {
+        consistent,
+        coefficient_sums,
+        exact: S::EXACT,
+        deterministic_order: if consistent { det.order } else { 0 },
+        deterministic_order_capped: consistent && det.capped,
+        invariant_measure_order: inv.as_ref().map(|b| b.order),
+        invariant_measure_order_capped: inv.as_ref().is_some_and(|b| b.capped),
+        first_nonvanishing: inv.and_then(|b| b.leading_term),
+    }
+}

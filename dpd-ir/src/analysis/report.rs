@@ -1,0 +1,68 @@
+//! The analysis report.
+
+use std::fmt;
+
+use serde::Serialize;
+
+use super::consistency::CoefficientSums;
+
+/// The order analysis of one step.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Analysis {
+    /// Each generator's coefficients sum to one (see [`CoefficientSums::thermostat`]).
+    pub consistent: bool,
+    pub coefficient_sums: CoefficientSums,
+    /// Exact rational arithmetic was used throughout (every coefficient was exact).
+    pub exact: bool,
+    /// Order of the Hamiltonian part; 0 when the scheme is inconsistent.
+    pub deterministic_order: u32,
+    /// Every degree checked matched: the order is at least `deterministic_order`.
+    pub deterministic_order_capped: bool,
+    /// Bound `p` of the left-ideal criterion: `f_n = 0` for `0 < n < p`. `None` for schemes
+    /// with F stages (not a splitting of exact flows: measure them).
+    pub invariant_measure_order: Option<u32>,
+    /// The criterion found nothing up to the maximal order checked: the bound is at least
+    /// `invariant_measure_order`.
+    pub invariant_measure_order_capped: bool,
+    /// The first non-vanishing reduced term `L_p rho`, words in adjoint order (the sub-flow
+    /// applied last stands leftmost; the reduction keeps words ending in A, `B_k` or `E_k`).
+    pub first_nonvanishing: Option<String>,
+}
+
+impl fmt::Display for Analysis {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let s = &self.coefficient_sums;
+        let at_least = |capped: bool| if capped { ">= " } else { "" };
+        writeln!(
+            f,
+            "consistent: {} (coefficient sums A = {}, B = {}, O = {}{}{})",
+            if self.consistent { "yes" } else { "no" },
+            s.a,
+            s.b,
+            s.o,
+            if s.thermostat { "" } else { ", no thermostat" },
+            if self.exact { ", exact" } else { ", f64" },
+        )?;
+        writeln!(
+            f,
+            "deterministic order: {}{}",
+            at_least(self.deterministic_order_capped),
+            self.deterministic_order
+        )?;
+        match self.invariant_measure_order {
+            Some(p) => writeln!(
+                f,
+                "invariant-measure order (left-ideal bound): {}{p}",
+                at_least(self.invariant_measure_order_capped)
+            )?,
+            None => writeln!(
+                f,
+                "invariant-measure order: not applicable (F stages are not exact flows; measure it)"
+            )?,
+        }
+        match (&self.first_nonvanishing, self.invariant_measure_order) {
+            (Some(term), Some(p)) => writeln!(f, "first non-vanishing term: L_{p} rho = {term}"),
+            _ => Ok(()),
+        }
+    }
+}
