@@ -69,7 +69,7 @@ impl SweepOrder {
     /// The default order of the `k`-th successive sweep of a step (from 0): Forward, Reverse,
     /// Forward, ... so that repeated sweeps mirror each other.
     pub fn alternating(k: usize) -> SweepOrder {
-        if k % 2 == 0 {
+        if k & 1 == 0 {
             SweepOrder::Forward
         } else {
             SweepOrder::Reverse

@@ -142,6 +142,9 @@ impl<'a> Expander<'a> {
     /// Expands one step. `site` is the span of the top-level item being expanded; inside
     /// prelude definitions (`builtin`) every error points there.
     fn step(&mut self, step: &Step, params: &[(String, Value)], site: Span, builtin: bool) {
+        if self.out.len() > MAX_APPLICATIONS {
+            return; // already reported
+        }
         let result = match step {
             Step::Apply(a) => self.apply(a, params, &site, builtin),
             Step::Prk(p) => self.prk(p, params, &site),
@@ -154,11 +157,15 @@ impl<'a> Expander<'a> {
         }
     }
 
+    /// Appends an application; the one past the limit is kept as a marker that the
+    /// overflow was reported, and stops the expansion.
     fn push(&mut self, app: Application, explicit: bool) -> Result<(), Diagnostic> {
         if self.out.len() >= MAX_APPLICATIONS {
+            let span = app.span.clone();
+            self.out.push(Pending { app, explicit });
             return Err(Diagnostic::new(
                 format!("scheme expands to more than {MAX_APPLICATIONS} sub-flow applications"),
-                app.span,
+                span,
             ));
         }
         self.out.push(Pending { app, explicit });

@@ -68,3 +68,26 @@ pub fn spellings() -> String {
         .collect::<Vec<_>>()
         .join(", ")
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn module_docs_list_every_letter() {
+        let docs = include_str!("mod.rs");
+        for l in LETTERS {
+            let row = format!("//! | `{}` | {} |", l.spelling, l.meaning);
+            assert!(docs.contains(&row), "missing docs row {row}");
+        }
+    }
+
+    #[test]
+    fn spellings_round_trip() {
+        for l in LETTERS {
+            assert_eq!(letter(l.spelling), Some(&l));
+            assert_eq!(spelling(l.flow), l.spelling);
+        }
+        assert_eq!(spellings(), "A, B, O, Ob, T, F");
+    }
+}

@@ -33,8 +33,8 @@
 //!
 //! Coefficients are expressions: numbers (`3`, `0.25`, `1e-3`), `+ - * /`, unary minus, `^`
 //! (right associative, binds tighter than unary minus: `-2^2 = -4`, `2^-1 = 1/2`),
-//! parentheses, `sqrt(..)`, `cbrt(..)` and constants. A number directly followed by a name or
-//! `(` multiplies it, like `*`: `1-2x1` = `1 - 2*x1`. Values stay exact rationals where they
+//! parentheses, `sqrt(..)`, `cbrt(..)` and constants. A number or a `)` directly followed by a
+//! name or `(` multiplies it, like `*`: `1-2x1` = `1 - 2*x1`, `(2/9)(1 + sqrt(38/11))`. Values stay exact rationals where they
 //! are rational (`sqrt(9/4)` = `3/2`, `2^10`, `0.1` = `1/10`); otherwise they are `f64`
 //! computed by a fixed sequence of IEEE operations, without any platform `libm` function, so
 //! they are identical at compile time and run time. Exponents must be rational with a
@@ -96,7 +96,7 @@
 //! prkarg  = "b" "=" list | "bh" "=" list | "kick" "=" ( "F" | "B" ) ;
 //! list    = "[" expr { "," expr } "]" ;
 //! expr    = product { ( "+" | "-" ) product } ;
-//! product = unary { ( "*" | "/" ) unary | power (after a number literal) } ;
+//! product = unary { ( "*" | "/" ) unary | power (right after a number or ")") } ;
 //! unary   = ( "-" | "+" ) unary | power ;
 //! power   = atom [ "^" unary ] ;
 //! atom    = number | name | ( "sqrt" | "cbrt" ) "(" expr ")" | "(" expr ")" ;

@@ -405,15 +405,15 @@ impl Parser<'_> {
     }
 
     /// `product := unary (('*' | '/') unary | power)*`, the bare `power` only right after a
-    /// number literal (`2x1`, `3(1 + x)`).
+    /// number literal or `)` (`2x1`, `3(1 + x)`, `(2/9)(1 + x)`).
     fn product(&mut self) -> PResult<Expr> {
         let saved = self.depth;
         let mut lhs = self.unary()?;
         loop {
-            let after_number = matches!(
+            let juxtaposed = matches!(
                 self.pos.checked_sub(1).and_then(|i| self.tokens.get(i)),
                 Some(Token {
-                    tok: Tok::Number(_),
+                    tok: Tok::Number(_) | Tok::Punct(')'),
                     ..
                 })
             );
@@ -421,7 +421,7 @@ impl Parser<'_> {
                 (BinOp::Mul, self.unary()?)
             } else if self.eat('/') {
                 (BinOp::Div, self.unary()?)
-            } else if after_number && matches!(self.peek(), Some(Tok::Lower(_) | Tok::Punct('('))) {
+            } else if juxtaposed && matches!(self.peek(), Some(Tok::Lower(_) | Tok::Punct('('))) {
                 (BinOp::Mul, self.power()?)
             } else {
                 self.depth = saved;

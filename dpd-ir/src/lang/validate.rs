@@ -21,7 +21,7 @@ pub fn validate(apps: &[Application], len: usize, options: &Options) -> Vec<Diag
             whole,
         )];
     }
-    let mut errors = Vec::new();
+    let mut errors = finite(apps);
     errors.extend(stochastic_steps_positive(apps));
     errors.extend(has_drift(apps, &whole));
     errors.extend(has_conservative_force(apps, &whole));
@@ -29,6 +29,14 @@ pub fn validate(apps: &[Application], len: usize, options: &Options) -> Vec<Diag
         errors.extend(consistent(apps));
     }
     errors
+}
+
+/// Every coefficient must be a finite `f64` at run time.
+fn finite(apps: &[Application]) -> Vec<Diagnostic> {
+    apps.iter()
+        .filter_map(|a| a.coeff.to_coeff().err().map(|m| (m, a.span.clone())))
+        .map(|(m, span)| Diagnostic::new(format!("non-finite coefficient: {m}"), span))
+        .collect()
 }
 
 /// O, Ob and T cannot run backwards: the variance factor 1 - exp(-2 tau h) of the exact OU

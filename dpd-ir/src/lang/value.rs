@@ -253,7 +253,7 @@ fn root(r: &BigRational, q: u32) -> VResult {
         return exact(r.clone());
     }
     if r.is_negative() {
-        if q % 2 == 0 {
+        if q & 1 == 0 {
             return Err(format!("even root of the negative number {r}"));
         }
         return root(&-r, q).map(|v| v.neg());
