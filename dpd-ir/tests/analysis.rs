@@ -1,6 +1,6 @@
 //! Known results of the order analysis (algorithms.md sections 3 and 4).
 
-use dpd_ir::analysis::{analyse, prk3_conditions, prk_order, Analysis};
+use dpd_ir::analysis::{analyse, analyse_prk, prk3_conditions, Analysis};
 use dpd_ir::{Coeff, Flow, Stage, SweepOrder};
 use num_rational::BigRational;
 use proptest::prelude::*;
@@ -211,7 +211,7 @@ fn prk3_tables_satisfy_the_published_conditions_and_are_third_order() {
     let ruth_b = [q(7, 24), q(3, 4), q(-1, 24)];
     let ruth_bh = [q(2, 3), q(-2, 3), q(1, 1)];
     let value = |c: &[Coeff]| [c[0].value, c[1].value, c[2].value];
-    let a = prk_order(&ruth_b, &ruth_bh);
+    let a = analyse_prk(&ruth_b, &ruth_bh);
     assert!(a.exact);
     assert_eq!(a.deterministic_order, 3, "{a}");
     assert!(!a.deterministic_order_capped);
@@ -223,7 +223,7 @@ fn prk3_tables_satisfy_the_published_conditions_and_are_third_order() {
         for r in prk3_conditions(b, bh) {
             assert!(r.abs() <= 1e-14, "{r}");
         }
-        let a = prk_order(&b.map(x), &bh.map(x));
+        let a = analyse_prk(&b.map(x), &bh.map(x));
         assert_eq!(a.deterministic_order, 3, "{a}");
     }
 }
@@ -259,7 +259,7 @@ proptest! {
         let res = prk3_conditions(b.clone().map(|c| c.value), bh.clone().map(|c| c.value));
         let holds = |i: usize| res[i].abs() < 1e-9;
         let expected = if !holds(1) { 1 } else if holds(2) && holds(4) { 3 } else { 2 };
-        prop_assert_eq!(prk_order(&b, &bh).deterministic_order.min(3), expected);
+        prop_assert_eq!(analyse_prk(&b, &bh).deterministic_order.min(3), expected);
     }
 }
 

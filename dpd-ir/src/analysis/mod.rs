@@ -15,7 +15,7 @@ mod report;
 mod scalar;
 
 pub use consistency::{CoefficientSums, CONSISTENCY_TOLERANCE};
-pub use prk::{prk3_conditions, prk_order, prk_stages};
+pub use prk::{analyse_prk, prk3_conditions, prk_stages};
 pub use report::Analysis;
 pub use scalar::FLOAT_TOLERANCE;
 

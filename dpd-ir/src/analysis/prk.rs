@@ -44,6 +44,6 @@ pub fn prk_stages(b: &[Coeff], bh: &[Coeff]) -> Vec<Stage> {
 }
 
 /// The analysis of a table's step; its `deterministic_order` is the PRK order (F acts as B).
-pub fn prk_order(b: &[Coeff], bh: &[Coeff]) -> Analysis {
+pub fn analyse_prk(b: &[Coeff], bh: &[Coeff]) -> Analysis {
     analyse(&prk_stages(b, bh))
 }
