@@ -357,3 +357,57 @@ fn timing_of_all_length_7_abo_strings() {
         elapsed / schemes.len() as u32
     );
 }
+
+#[test]
+fn float_and_exact_arithmetic_agree_on_short_strings() {
+    use dpd_ir::analysis::{analyse_with, Options};
+    let flows = [A, B, O];
+    let float = Options {
+        force_float: true,
+        ..Options::default()
+    };
+    for len in 1..=5u32 {
+        for code in 0..3usize.pow(len) {
+            let letters: Vec<Flow> = (0..len).map(|i| flows[code / 3usize.pow(i) % 3]).collect();
+            let count = |f: Flow| letters.iter().filter(|&&g| g == f).count() as i64;
+            let scheme: Vec<Stage> = letters.iter().map(|&f| stage(f, q(1, count(f)))).collect();
+            let (e, f) = (analyse(&scheme), analyse_with(&scheme, &float));
+            assert!(e.exact && !f.exact);
+            assert_eq!(
+                (
+                    e.consistent,
+                    e.deterministic_order,
+                    e.invariant_measure_order
+                ),
+                (
+                    f.consistent,
+                    f.deterministic_order,
+                    f.invariant_measure_order
+                ),
+                "{letters:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn options_are_clamped() {
+    use dpd_ir::analysis::{analyse_with, Options};
+    let aboba = seq(&[
+        (A, q(1, 2)),
+        (B, q(1, 2)),
+        (O, q(1, 1)),
+        (B, q(1, 2)),
+        (A, q(1, 2)),
+    ]);
+    let wild = Options {
+        max_degree: 1000,
+        max_invariant_order: 0,
+        pairs: 0,
+        force_float: false,
+    };
+    let a = analyse_with(&aboba, &wild);
+    assert_eq!(a.deterministic_order, 2);
+    assert_eq!(a.invariant_measure_order, Some(1));
+    assert!(a.invariant_measure_order_capped);
+}

@@ -5,6 +5,12 @@
 //! first). Both orders come from one hand-written truncated free associative algebra
 //! (module `algebra`; no crate provides non-commutative power series), over exact rationals when
 //! every coefficient is exact and over `f64` otherwise (module `scalar`).
+//!
+//! Which way products are written: the deterministic order multiplies the stage exponentials
+//! with the first applied leftmost (module `hamiltonian`; the order does not depend on it);
+//! the invariant-measure criterion works with Fokker-Planck adjoints acting on `rho` from the
+//! right, so there the sub-flow applied last stands leftmost (module `invariant`), and so do
+//! the words of [`Analysis::first_nonvanishing`].
 
 mod algebra;
 mod consistency;
