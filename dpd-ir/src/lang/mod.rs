@@ -39,7 +39,8 @@
 //! computed by a fixed sequence of IEEE operations, without any platform `libm` function, so
 //! they are identical at compile time and run time. Exponents must be rational with a
 //! denominator of at most 32; exact values are limited to 4096-bit numerators and
-//! denominators.
+//! denominators, and an expression to 200 levels of nesting (each parenthesis, sign, power and
+//! operator of a chain counts one level).
 //!
 //! # Sweep order
 //!

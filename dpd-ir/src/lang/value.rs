@@ -163,17 +163,20 @@ impl Value {
                         _ => Ok(Value::int(0)),
                     };
                 }
+                // b^p has at least (bits - 1) |p| + 1 bits: refuse before computing.
                 let bits = b.numer().bits().max(b.denom().bits());
                 let unit = b.abs().is_one();
-                if !unit && u128::from(bits) * u128::from(p.unsigned_abs()) > u128::from(MAX_BITS) {
+                if !unit
+                    && u128::from(bits - 1) * u128::from(p.unsigned_abs()) >= u128::from(MAX_BITS)
+                {
                     return Err(format!(
                         "power too large: {self}^{p} needs more than {MAX_BITS} bits"
                     ));
                 }
-                // A unit base only needs the parity of p; otherwise |p| <= MAX_BITS here.
+                // A unit base only needs the parity of p; otherwise |p| < MAX_BITS here.
                 let expon = i32::try_from(if unit { p.rem_euclid(2) } else { p })
                     .map_err(|_| format!("exponent {exp} is too large"))?;
-                root(&b.pow(expon), q)
+                root(&checked(b.pow(expon))?, q)
             }
             Value::Float(x) => {
                 let r = if q == 1 {
@@ -211,13 +214,17 @@ impl std::fmt::Display for Value {
 }
 
 /// Checks the size of an exact result.
-fn exact(r: BigRational) -> VResult {
+fn checked(r: BigRational) -> Result<BigRational, String> {
     if r.numer().bits() > MAX_BITS || r.denom().bits() > MAX_BITS {
         return Err(format!(
             "exact value needs more than {MAX_BITS} bits; use smaller numbers"
         ));
     }
-    Ok(Value::Exact(r))
+    Ok(r)
+}
+
+fn exact(r: BigRational) -> VResult {
+    checked(r).map(Value::Exact)
 }
 
 /// Checks that a float result is finite.
@@ -327,6 +334,8 @@ mod tests {
         assert_eq!(Value::int(2).pow(&Value::int(-2)).unwrap(), v("0.25"));
         assert_eq!(Value::int(-1).pow(&v("1e18")).unwrap(), Value::int(1));
         assert!(Value::int(10).pow(&v("1e10")).is_err());
+        assert!(Value::int(3).pow(&Value::int(2580)).is_ok());
+        assert!(Value::int(3).pow(&Value::int(2585)).is_err());
         assert!(Value::int(0).pow(&Value::int(-1)).is_err());
         assert!(Value::int(2).pow(&Value::Float(0.5)).is_err());
         assert!(Value::Float(1e300).pow(&Value::int(2)).is_err());
