@@ -77,7 +77,7 @@ impl Value {
         }
     }
 
-    /// `Some(true)` if positive; exact when possible.
+    /// Whether the value is positive (decided exactly for exact values).
     pub fn is_positive(&self) -> bool {
         match self {
             Value::Exact(r) => r.is_positive(),
