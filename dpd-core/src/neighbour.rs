@@ -173,7 +173,7 @@ impl VerletList {
         q.len() != self.reference.len()
             || q.iter().zip(&self.reference).any(|(a, b)| {
                 let d2 = bx.min_image(a - b).norm_squared();
-                !(d2 <= limit)
+                d2 > limit || d2.is_nan()
             })
     }
 

@@ -56,7 +56,7 @@ impl Scheme for Sweeps {
         "O"
     }
     fn step(&self, sys: &mut System) {
-        let order = if sys.step() % 2 == 0 {
+        let order = if sys.step().is_multiple_of(2) {
             SweepOrder::Forward
         } else {
             SweepOrder::Reverse

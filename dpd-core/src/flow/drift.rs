@@ -10,8 +10,8 @@ pub fn drift(sys: &mut System, h: f64) {
     for ((q, p), &im) in sys.q.iter_mut().zip(&sys.p).zip(&sys.inv_mass) {
         let d = (h * im) * p;
         let d2 = d.norm_squared();
-        // `!(d2 <= max2)` also catches NaN, which then poisons the bound.
-        if !(d2 <= max2) {
+        // NaN is kept too, so that it poisons the bound.
+        if d2 > max2 || d2.is_nan() {
             max2 = d2;
         }
         *q = bx.wrap(*q + d);

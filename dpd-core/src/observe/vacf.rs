@@ -63,7 +63,7 @@ impl Vacf {
             self.sums[lag] += v.iter().zip(v0).map(|(a, b)| a.dot(b)).sum::<f64>() / n;
             self.counts[lag] += 1;
         }
-        if s % self.origin_every == 0 {
+        if s.is_multiple_of(self.origin_every) {
             self.sums[0] += v.iter().map(|a| a.norm_squared()).sum::<f64>() / n;
             self.counts[0] += 1;
             self.origins.push_back((s, v));
