@@ -1,1 +1,41 @@
-//! core
+//! Core of dpd: the state of a dissipative-particle-dynamics system, neighbour search, pair
+//! random numbers, the exact and explicit sub-flows that splitting schemes are built from,
+//! observables and checkpoints.
+//!
+//! Conventions used throughout (see `../shared/docs/algorithms.md`):
+//! - Reduced DPD units: lengths in units of the cutoff's unit, energies in units of k_B T's unit,
+//!   masses in the unit of the particle mass. Nothing is rescaled internally.
+//! - `q` positions (wrapped into the periodic box), `p` momenta, `m` masses; for a pair
+//!   `q_ij = q_i - q_j` under minimum image, `e_ij = q_ij / r_ij` points from j to i.
+//! - A sub-flow advances the state by a step length `h = c * dt`.
+//! - Pairwise sweeps visit the interacting pairs in one documented order: pairs `(i, j)`,
+//!   `i < j`, sorted lexicographically (`SweepOrder::Forward`), or that order reversed. The order
+//!   depends neither on when the neighbour list was built nor on the thread count.
+
+pub mod boundary;
+pub mod checkpoint;
+pub mod error;
+pub mod flow;
+pub mod force;
+pub mod init;
+pub mod neighbour;
+pub mod observe;
+pub mod pairs;
+pub mod params;
+pub mod reference;
+pub mod rng;
+pub mod scheme;
+pub mod system;
+
+#[doc(hidden)]
+pub mod __private;
+
+pub use boundary::PeriodicBox;
+pub use dpd_ir::{Flow, Stage, SweepOrder};
+pub use error::{BlowUp, CheckpointError, ParamError};
+pub use params::Params;
+pub use scheme::{DynScheme, Scheme};
+pub use system::{System, SystemBuilder};
+
+/// Three-vector of `f64`, the type of positions, momenta and forces.
+pub type Vec3 = nalgebra::Vector3<f64>;

@@ -1,0 +1,89 @@
+//! Typed errors of the core: invalid input, detected blow-ups and unreadable checkpoints.
+
+use thiserror::Error;
+
+/// An input value that is not allowed. Names the field, the value and what would be valid.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[error("invalid {field} = {value}: {allowed}")]
+pub struct ParamError {
+    /// The parameter, e.g. `gamma` or `a[0][1]` or `mass[17]`.
+    pub field: String,
+    /// The offending value as given.
+    pub value: String,
+    /// What would be valid.
+    pub allowed: String,
+}
+
+impl ParamError {
+    pub fn new(field: impl Into<String>, value: impl ToString, allowed: impl Into<String>) -> Self {
+        ParamError {
+            field: field.into(),
+            value: value.to_string(),
+            allowed: allowed.into(),
+        }
+    }
+}
+
+/// Require `value` to be finite and `> 0`.
+pub(crate) fn positive(field: &str, value: f64) -> Result<f64, ParamError> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(ParamError::new(field, value, "must be finite and > 0"))
+    }
+}
+
+/// Require `value` to be finite and `>= 0`.
+pub(crate) fn non_negative(field: &str, value: f64) -> Result<f64, ParamError> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(ParamError::new(field, value, "must be finite and >= 0"))
+    }
+}
+
+/// A step that produced a non-finite value or moved a particle too far. The system was left
+/// in the state before the failing step.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[error("blow-up at step {step} of scheme {scheme}: {reason}")]
+pub struct BlowUp {
+    /// Number of the step that failed (steps count from 0).
+    pub step: u64,
+    pub scheme: String,
+    pub reason: String,
+}
+
+/// A checkpoint that cannot be written or read back.
+#[derive(Debug, Error)]
+pub enum CheckpointError {
+    #[error("checkpoint {path}: {source}")]
+    Io {
+        path: String,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("checkpoint {path} is not a dpd checkpoint (bad magic bytes)")]
+    NotACheckpoint { path: String },
+    #[error("checkpoint {path} has format version {found}; this build reads version {expected}")]
+    Version {
+        path: String,
+        found: u32,
+        expected: u32,
+    },
+    #[error("checkpoint {path} is truncated: header announces {expected} bytes of data, file holds {found}")]
+    Truncated {
+        path: String,
+        expected: u64,
+        found: u64,
+    },
+    #[error("checkpoint {path} is corrupt: checksum mismatch")]
+    Corrupt { path: String },
+    #[error("checkpoint {path} cannot be decoded: {message}")]
+    Decode { path: String, message: String },
+    #[error("checkpoint {path} holds invalid data: {source}")]
+    Invalid {
+        path: String,
+        #[source]
+        source: ParamError,
+    },
+}

@@ -1,0 +1,55 @@
+//! Initial states of the standard scenes (algorithms.md section 8).
+
+use crate::boundary::PeriodicBox;
+use crate::error::{positive, ParamError};
+use crate::Vec3;
+use rand::{Rng, SeedableRng};
+use rand_distr::StandardNormal;
+
+/// The cube that holds `n` particles at number density `density`.
+pub fn cubic_box(n: usize, density: f64) -> Result<PeriodicBox, ParamError> {
+    let density = positive("density", density)?;
+    if n == 0 {
+        return Err(ParamError::new("n", n, "must be at least 1"));
+    }
+    PeriodicBox::cubic((n as f64 / density).cbrt())
+}
+
+/// `n` positions drawn uniformly and independently in the box.
+pub fn uniform_positions(bx: &PeriodicBox, n: usize, seed: u64) -> Vec<Vec3> {
+    let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
+    let l = bx.lengths();
+    (0..n)
+        .map(|_| {
+            bx.wrap(Vec3::new(
+                rng.random::<f64>() * l.x,
+                rng.random::<f64>() * l.y,
+                rng.random::<f64>() * l.z,
+            ))
+        })
+        .collect()
+}
+
+/// Maxwell-Boltzmann momenta (each component normal with variance `m_i kbt`), with the total
+/// momentum then removed (each particle loses its mass share), so that no centre-of-mass
+/// motion biases the kinetic temperature.
+pub fn maxwell_momenta(masses: &[f64], kbt: f64, seed: u64) -> Vec<Vec3> {
+    let mut rng = rand::rngs::StdRng::seed_from_u64(seed ^ 0x9E37_79B9_7F4A_7C15);
+    let mut p: Vec<Vec3> = masses
+        .iter()
+        .map(|&m| {
+            let s = (m * kbt).sqrt();
+            Vec3::new(
+                s * rng.sample::<f64, _>(StandardNormal),
+                s * rng.sample::<f64, _>(StandardNormal),
+                s * rng.sample::<f64, _>(StandardNormal),
+            )
+        })
+        .collect();
+    let total: Vec3 = p.iter().sum();
+    let mass: f64 = masses.iter().sum();
+    for (pi, &m) in p.iter_mut().zip(masses) {
+        *pi -= (m / mass) * total;
+    }
+    p
+}

@@ -1,0 +1,136 @@
+use super::thermo::Thermo;
+use crate::error::ParamError;
+use serde::Serialize;
+
+/// Running mean and variance of a scalar (Welford's update).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Running {
+    n: u64,
+    mean: f64,
+    m2: f64,
+}
+
+impl Running {
+    pub fn push(&mut self, x: f64) {
+        self.n += 1;
+        let d = x - self.mean;
+        self.mean += d / self.n as f64;
+        self.m2 += d * (x - self.mean);
+    }
+    pub fn count(&self) -> u64 {
+        self.n
+    }
+    /// Mean of the values pushed (NaN when none).
+    pub fn mean(&self) -> f64 {
+        if self.n == 0 {
+            f64::NAN
+        } else {
+            self.mean
+        }
+    }
+    /// Sample variance (NaN with fewer than two values).
+    pub fn variance(&self) -> f64 {
+        if self.n < 2 {
+            f64::NAN
+        } else {
+            self.m2 / (self.n - 1) as f64
+        }
+    }
+}
+
+/// Averages of [`Thermo`] samples over the last `fraction` of a run of `total_steps` steps.
+#[derive(Clone, Debug)]
+pub struct ThermoAverages {
+    start_step: u64,
+    kinetic: Running,
+    numerator: Running,
+    denominator: Running,
+    potential: Running,
+    pressure: Running,
+}
+
+/// Averaged observables of a run.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct ThermoSummary {
+    pub samples: u64,
+    pub kinetic_temperature: f64,
+    /// `<sum |F^C|^2> / <sum lap U>`: a ratio of averages, not an average of ratios.
+    pub configurational_temperature: f64,
+    pub potential_energy: f64,
+    pub pressure: f64,
+}
+
+impl ThermoAverages {
+    /// Average over steps `>= (1 - fraction) * total_steps`; `fraction` in `(0, 1]`.
+    pub fn new(total_steps: u64, fraction: f64) -> Result<Self, ParamError> {
+        if !(fraction > 0.0 && fraction <= 1.0) {
+            return Err(ParamError::new(
+                "average_fraction",
+                fraction,
+                "must be in (0, 1]",
+            ));
+        }
+        let start_step = ((1.0 - fraction) * total_steps as f64).round() as u64;
+        Ok(ThermoAverages {
+            start_step,
+            kinetic: Running::default(),
+            numerator: Running::default(),
+            denominator: Running::default(),
+            potential: Running::default(),
+            pressure: Running::default(),
+        })
+    }
+
+    /// First step counted.
+    pub fn start_step(&self) -> u64 {
+        self.start_step
+    }
+
+    /// Whether a state after `completed_steps` steps falls into the averaging window.
+    pub fn wants(&self, completed_steps: u64) -> bool {
+        completed_steps >= self.start_step
+    }
+
+    pub fn record(&mut self, t: &Thermo) {
+        self.kinetic.push(t.kinetic_temperature);
+        self.numerator.push(t.config_numerator);
+        self.denominator.push(t.config_denominator);
+        self.potential.push(t.potential_energy);
+        self.pressure.push(t.pressure);
+    }
+
+    pub fn summary(&self) -> ThermoSummary {
+        ThermoSummary {
+            samples: self.kinetic.count(),
+            kinetic_temperature: self.kinetic.mean(),
+            configurational_temperature: self.numerator.mean() / self.denominator.mean(),
+            potential_energy: self.potential.mean(),
+            pressure: self.pressure.mean(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn welford_matches_two_pass() {
+        let xs = [1.0, 4.0, 9.0, 16.0, 25.0];
+        let mut r = Running::default();
+        xs.iter().for_each(|&x| r.push(x));
+        assert_eq!(r.mean(), 11.0);
+        approx::assert_relative_eq!(r.variance(), 93.5);
+    }
+
+    #[test]
+    fn window_is_the_last_fraction() {
+        let a = ThermoAverages::new(1000, 0.8).unwrap();
+        assert_eq!(a.start_step(), 200);
+        assert!(!a.wants(199) && a.wants(200));
+        assert_eq!(
+            ThermoAverages::new(10, 1.5).unwrap_err().field,
+            "average_fraction"
+        );
+    }
+}

@@ -1,0 +1,65 @@
+use crate::system::System;
+use serde::Serialize;
+
+/// Instantaneous thermodynamic quantities of one state.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Thermo {
+    /// `k_B T_K = sum p.p/m / (3 (N - 1))`.
+    pub kinetic_temperature: f64,
+    /// Numerator of the configurational temperature, `sum_i |F^C_i|^2`.
+    pub config_numerator: f64,
+    /// Denominator of the configurational temperature, `sum_i lap_i U`.
+    pub config_denominator: f64,
+    /// Potential energy per particle, `U / N`.
+    pub potential_energy: f64,
+    /// Virial pressure `N k_B T_K / V + sum_pairs q_ij . F^C_ij / (3 V)`.
+    pub pressure: f64,
+}
+
+impl Thermo {
+    /// `k_B T_C` of this one state (noisy; average numerator and denominator separately).
+    pub fn configurational_temperature(&self) -> f64 {
+        self.config_numerator / self.config_denominator
+    }
+}
+
+/// `k_B T_K = sum_i p_i . p_i / m_i / (3 (N - 1))`: the total momentum is conserved, so N - 1
+/// particles' worth of degrees of freedom are free.
+pub fn kinetic_temperature(sys: &System) -> f64 {
+    let twice_ke: f64 = sys
+        .p
+        .iter()
+        .zip(&sys.inv_mass)
+        .map(|(p, im)| p.norm_squared() * im)
+        .sum();
+    twice_ke / (3.0 * (sys.len() as f64 - 1.0))
+}
+
+/// Measure [`Thermo`] at the current positions and momenta.
+///
+/// Pair potential `phi(r) = (a r_c / 2)(1 - r/r_c)^2`; in 3-D
+/// `lap_i U = sum_j [a / r_c - 2 a (1 - r/r_c) / r]`.
+pub fn thermo(sys: &mut System) -> Thermo {
+    sys.ensure_conservative();
+    let rc = sys.params.rc();
+    let (mut u, mut lap, mut virial) = (0.0, 0.0, 0.0);
+    for pair in &sys.pairs {
+        let a = sys
+            .params
+            .a(sys.kind[pair.i as usize], sys.kind[pair.j as usize]);
+        u += 0.5 * a * rc * pair.w * pair.w;
+        lap += 2.0 * (a / rc - 2.0 * a * pair.w / pair.r);
+        virial += pair.r * a * pair.w;
+    }
+    let numerator: f64 = sys.conservative.iter().map(|f| f.norm_squared()).sum();
+    let n = sys.len() as f64;
+    let volume = sys.bx.volume();
+    let tk = kinetic_temperature(sys);
+    Thermo {
+        kinetic_temperature: tk,
+        config_numerator: numerator,
+        config_denominator: lap,
+        potential_energy: u / n,
+        pressure: n * tk / volume + virial / (3.0 * volume),
+    }
+}

@@ -1,0 +1,351 @@
+//! The state of a DPD system and the caches that let sub-flows share evaluations.
+
+use crate::boundary::PeriodicBox;
+use crate::error::{positive, ParamError};
+use crate::force;
+use crate::neighbour::VerletList;
+use crate::pairs::{self, Pair};
+use crate::params::Params;
+use crate::Vec3;
+
+/// Default Verlet skin in units of length.
+pub const DEFAULT_SKIN: f64 = 0.3;
+
+/// How many evaluations the system has done; the generated schemes are checked against these.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Counters {
+    /// Evaluations of the interacting pairs and their geometry.
+    pub pair_distance_evaluations: u64,
+    /// Evaluations of per-particle forces (conservative for B, full for F) and inline pair
+    /// conservative forces of T sweeps.
+    pub force_evaluations: u64,
+}
+
+/// Positions, momenta, masses and types of N particles in a periodic box, the interaction
+/// parameters, the time step and the random-number key, plus evaluation caches.
+///
+/// Caches are tied to the positions: the pair geometry, the conservative forces and the full
+/// forces (with their noise) are computed at most once per set of positions and are dropped by
+/// every drift. The full-force cache is deliberately *not* dropped when momenta change: that is
+/// the velocity Verlet convention (forces evaluated at the end of a step are reused for the
+/// first half-kick of the next).
+#[derive(Clone, Debug)]
+pub struct System {
+    pub(crate) bx: PeriodicBox,
+    pub(crate) params: Params,
+    pub(crate) q: Vec<Vec3>,
+    pub(crate) p: Vec<Vec3>,
+    pub(crate) mass: Vec<f64>,
+    pub(crate) inv_mass: Vec<f64>,
+    pub(crate) kind: Vec<u16>,
+    pub(crate) dt: f64,
+    pub(crate) seed: u64,
+    pub(crate) step: u64,
+    pub(crate) list: VerletList,
+    pub(crate) pairs: Vec<Pair>,
+    pub(crate) pairs_valid: bool,
+    pub(crate) conservative: Vec<Vec3>,
+    pub(crate) conservative_valid: bool,
+    pub(crate) full: Vec<Vec3>,
+    pub(crate) full_valid: bool,
+    pub(crate) counters: Counters,
+    /// Sum over this step's drifts of the largest single-particle drift length.
+    pub(crate) drift_bound: f64,
+    pub(crate) backup: crate::scheme::Backup,
+}
+
+/// Builds a [`System`]; every input is validated by [`SystemBuilder::build`].
+#[derive(Clone, Debug)]
+pub struct SystemBuilder {
+    params: Params,
+    bx: PeriodicBox,
+    q: Vec<Vec3>,
+    p: Option<Vec<Vec3>>,
+    mass: Option<Vec<f64>>,
+    kind: Option<Vec<u16>>,
+    dt: f64,
+    seed: u64,
+    skin: f64,
+}
+
+impl SystemBuilder {
+    /// Momenta (default: all zero).
+    pub fn momenta(mut self, p: Vec<Vec3>) -> Self {
+        self.p = Some(p);
+        self
+    }
+    /// Per-particle masses (default: all 1).
+    pub fn masses(mut self, m: Vec<f64>) -> Self {
+        self.mass = Some(m);
+        self
+    }
+    /// Per-particle types, indices into the `a` matrix (default: all 0).
+    pub fn kinds(mut self, k: Vec<u16>) -> Self {
+        self.kind = Some(k);
+        self
+    }
+    pub fn dt(mut self, dt: f64) -> Self {
+        self.dt = dt;
+        self
+    }
+    pub fn seed(mut self, seed: u64) -> Self {
+        self.seed = seed;
+        self
+    }
+    pub fn skin(mut self, skin: f64) -> Self {
+        self.skin = skin;
+        self
+    }
+    pub fn build(self) -> Result<System, ParamError> {
+        let n = self.q.len();
+        if n < 2 {
+            return Err(ParamError::new(
+                "positions",
+                format!("{n} particles"),
+                "needs at least 2 particles",
+            ));
+        }
+        if n > u32::MAX as usize {
+            return Err(ParamError::new(
+                "positions",
+                format!("{n} particles"),
+                "at most 2^32 - 1 particles",
+            ));
+        }
+        let p = self.p.unwrap_or_else(|| vec![Vec3::zeros(); n]);
+        let mass = self.mass.unwrap_or_else(|| vec![1.0; n]);
+        let kind = self.kind.unwrap_or_else(|| vec![0; n]);
+        for (name, len) in [
+            ("momenta", p.len()),
+            ("masses", mass.len()),
+            ("kinds", kind.len()),
+        ] {
+            if len != n {
+                return Err(ParamError::new(
+                    name,
+                    format!("{len} entries"),
+                    format!("must have one entry per particle ({n})"),
+                ));
+            }
+        }
+        for (i, x) in self.q.iter().enumerate() {
+            if !x.iter().all(|v| v.is_finite()) {
+                return Err(ParamError::new(
+                    format!("positions[{i}]"),
+                    format!("{x:?}"),
+                    "must be finite",
+                ));
+            }
+        }
+        for (i, x) in p.iter().enumerate() {
+            if !x.iter().all(|v| v.is_finite()) {
+                return Err(ParamError::new(
+                    format!("momenta[{i}]"),
+                    format!("{x:?}"),
+                    "must be finite",
+                ));
+            }
+        }
+        for (i, &m) in mass.iter().enumerate() {
+            positive(&format!("mass[{i}]"), m)?;
+        }
+        for (i, &k) in kind.iter().enumerate() {
+            if k as usize >= self.params.types() {
+                return Err(ParamError::new(
+                    format!("kinds[{i}]"),
+                    k,
+                    format!("must be < {} (rows of a)", self.params.types()),
+                ));
+            }
+        }
+        let dt = positive("dt", self.dt)?;
+        if !(self.skin.is_finite() && self.skin >= 0.0) {
+            return Err(ParamError::new(
+                "skin",
+                self.skin,
+                "must be finite and >= 0",
+            ));
+        }
+        let reach = self.params.rc() + self.skin;
+        if self.bx.min_length() < 2.0 * reach {
+            return Err(ParamError::new(
+                "box",
+                format!("{:?}", <[f64; 3]>::from(self.bx)),
+                format!("every edge must be at least 2 (r_c + skin) = {} for the minimum-image convention", 2.0 * reach),
+            ));
+        }
+        let inv_mass = mass.iter().map(|m| 1.0 / m).collect();
+        let q = self.q.iter().map(|&x| self.bx.wrap(x)).collect();
+        Ok(System {
+            bx: self.bx,
+            params: self.params,
+            q,
+            p,
+            mass,
+            inv_mass,
+            kind,
+            dt,
+            seed: self.seed,
+            step: 0,
+            list: VerletList::new(self.skin),
+            pairs: Vec::new(),
+            pairs_valid: false,
+            conservative: vec![Vec3::zeros(); n],
+            conservative_valid: false,
+            full: vec![Vec3::zeros(); n],
+            full_valid: false,
+            counters: Counters::default(),
+            drift_bound: 0.0,
+            backup: Default::default(),
+        })
+    }
+}
+
+impl System {
+    /// Start building a system of particles at `positions` (wrapped into the box).
+    pub fn builder(params: Params, bx: PeriodicBox, positions: Vec<Vec3>) -> SystemBuilder {
+        SystemBuilder {
+            params,
+            bx,
+            q: positions,
+            p: None,
+            mass: None,
+            kind: None,
+            dt: 0.01,
+            seed: 0,
+            skin: DEFAULT_SKIN,
+        }
+    }
+
+    pub fn len(&self) -> usize {
+        self.q.len()
+    }
+    pub fn is_empty(&self) -> bool {
+        self.q.is_empty()
+    }
+    pub fn params(&self) -> &Params {
+        &self.params
+    }
+    pub fn boundary(&self) -> &PeriodicBox {
+        &self.bx
+    }
+    pub fn positions(&self) -> &[Vec3] {
+        &self.q
+    }
+    pub fn momenta(&self) -> &[Vec3] {
+        &self.p
+    }
+    pub fn masses(&self) -> &[f64] {
+        &self.mass
+    }
+    pub fn kinds(&self) -> &[u16] {
+        &self.kind
+    }
+    /// Time step.
+    pub fn dt(&self) -> f64 {
+        self.dt
+    }
+    /// Key of the pair random numbers.
+    pub fn seed(&self) -> u64 {
+        self.seed
+    }
+    /// Number of completed steps.
+    pub fn step(&self) -> u64 {
+        self.step
+    }
+    pub fn counters(&self) -> Counters {
+        self.counters
+    }
+    /// Number of neighbour-list builds so far.
+    pub fn list_builds(&self) -> u64 {
+        self.list.builds()
+    }
+
+    /// Total momentum.
+    pub fn total_momentum(&self) -> Vec3 {
+        self.p.iter().sum()
+    }
+
+    /// Mutable momenta. Positions and the caches tied to them are unaffected.
+    pub fn momenta_mut(&mut self) -> &mut [Vec3] {
+        &mut self.p
+    }
+
+    /// Replace positions (wrapped into the box); drops every position-dependent cache.
+    pub fn set_positions(&mut self, q: &[Vec3]) -> Result<(), ParamError> {
+        if q.len() != self.q.len() {
+            return Err(ParamError::new(
+                "positions",
+                format!("{} entries", q.len()),
+                format!("must have {} entries", self.q.len()),
+            ));
+        }
+        for (i, x) in q.iter().enumerate() {
+            if !x.iter().all(|v| v.is_finite()) {
+                return Err(ParamError::new(
+                    format!("positions[{i}]"),
+                    format!("{x:?}"),
+                    "must be finite",
+                ));
+            }
+        }
+        for (dst, &x) in self.q.iter_mut().zip(q) {
+            *dst = self.bx.wrap(x);
+        }
+        self.positions_changed();
+        Ok(())
+    }
+
+    /// Drop every cache tied to the positions.
+    pub(crate) fn positions_changed(&mut self) {
+        self.pairs_valid = false;
+        self.conservative_valid = false;
+        self.full_valid = false;
+    }
+
+    /// The interacting pairs at the current positions, in `(i, j)` order (evaluated if needed).
+    pub fn pairs(&mut self) -> &[Pair] {
+        self.ensure_pairs();
+        &self.pairs
+    }
+
+    /// Conservative forces `F^C_i` at the current positions (evaluated if needed).
+    pub fn conservative_forces(&mut self) -> &[Vec3] {
+        self.ensure_conservative();
+        &self.conservative
+    }
+
+    pub(crate) fn ensure_pairs(&mut self) {
+        if !self.pairs_valid {
+            self.list.update(&self.q, &self.bx, self.params.rc());
+            pairs::collect(&self.list, &self.q, &self.bx, &self.params, &mut self.pairs);
+            self.pairs_valid = true;
+            self.counters.pair_distance_evaluations += 1;
+        }
+    }
+
+    pub(crate) fn ensure_conservative(&mut self) {
+        if !self.conservative_valid {
+            self.ensure_pairs();
+            force::conservative(
+                &self.pairs,
+                &self.params,
+                &self.kind,
+                &mut self.conservative,
+            );
+            self.conservative_valid = true;
+            self.counters.force_evaluations += 1;
+        }
+    }
+
+    /// Full forces for an F stage: reused while positions are unchanged, otherwise evaluated
+    /// at the current momenta with the noise of `stream` in the current step.
+    pub(crate) fn ensure_full(&mut self, stream: u8) {
+        if !self.full_valid {
+            self.ensure_pairs();
+            force::full(self, stream);
+            self.full_valid = true;
+            self.counters.force_evaluations += 1;
+        }
+    }
+}

@@ -1,0 +1,39 @@
+//! Shared set-up of the core's integration tests.
+#![allow(dead_code)]
+
+use dpd_core::init::{cubic_box, maxwell_momenta, uniform_positions};
+use dpd_core::params::ParamsBuilder;
+use dpd_core::{Params, System};
+
+/// A system of `n` unit-mass particles at `density` with the given parameters, Maxwell
+/// momenta and uniform positions.
+pub fn system(n: usize, density: f64, params: ParamsBuilder, dt: f64, seed: u64) -> System {
+    let params: Params = params.build().unwrap();
+    let bx = cubic_box(n, density).unwrap();
+    let q = uniform_positions(&bx, n, seed);
+    let p = maxwell_momenta(&vec![1.0; n], params.kbt(), seed);
+    System::builder(params, bx, q)
+        .momenta(p)
+        .dt(dt)
+        .seed(seed)
+        .build()
+        .unwrap()
+}
+
+/// The standard equilibrium box of algorithms.md section 8 (N = 500, density 3, a = 25,
+/// k_B T = 1) with friction `gamma`.
+pub fn standard_box(gamma: f64, dt: f64, seed: u64) -> System {
+    system(500, 3.0, Params::builder().gamma(gamma), dt, seed)
+}
+
+/// Bitwise equality of two systems' positions and momenta.
+pub fn same_bits(a: &System, b: &System) -> bool {
+    let bits = |s: &System| -> Vec<u64> {
+        s.positions()
+            .iter()
+            .chain(s.momenta())
+            .flat_map(|v| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>())
+            .collect()
+    };
+    bits(a) == bits(b)
+}
