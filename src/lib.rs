@@ -1,1 +1,25 @@
-//! dpd
+//! dpd: compose, check and run splitting integrators for dissipative particle dynamics.
+//!
+//! ```ignore
+//! let scheme = dpd::dpd_scheme!("BAOOAB");
+//! sys.advance(&scheme, 1000)?;
+//! ```
+//!
+//! - [`dpd_scheme!`] turns a scheme string into a step function specialised at compile time;
+//!   the language is documented in [`lang`].
+//! - [`analysis`] checks consistency, deterministic order and the invariant-measure order bound.
+//! - [`schemes`] holds the named schemes of the literature and their registry.
+//! - The core ([`System`], sub-flows in [`flow`], observables in [`observe`], checkpoints) comes
+//!   from `dpd-core`.
+
+pub use dpd_core::{
+    boundary, checkpoint, error, flow, init, neighbour, observe, pairs, params, reference, rng,
+    scheme, system, BlowUp, CheckpointError, DynScheme, Flow, ParamError, Params, PeriodicBox,
+    Scheme, Stage, SweepOrder, System, SystemBuilder, Vec3,
+};
+pub use dpd_ir::{analysis, lang, program, Analysis, Program};
+pub use dpd_macros::dpd_scheme;
+pub use dpd_schemes as schemes;
+
+#[doc(hidden)]
+pub use dpd_core::__private;

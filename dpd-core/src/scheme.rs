@@ -5,7 +5,7 @@ use crate::error::BlowUp;
 use crate::flow::{bbk, drift, full_force, kick, ou, trotter};
 use crate::system::System;
 use crate::Vec3;
-use dpd_ir::{Flow, Stage};
+use dpd_ir::{Diagnostic, Flow, Options, Program, Stage};
 
 /// An integrator: one step of length `sys.dt()`.
 ///
@@ -19,6 +19,12 @@ pub trait Scheme {
     /// Advance `sys` by one step, without checks and without incrementing the step counter
     /// (random numbers are keyed by `sys.step()`).
     fn step(&self, sys: &mut System);
+
+    /// The flattened stage sequence, where the scheme is a splitting written in the scheme
+    /// language: coefficients, evaluations per step, symmetry and order analysis.
+    fn program(&self) -> Option<&Program> {
+        None
+    }
 }
 
 impl<S: Scheme + ?Sized> Scheme for &S {
@@ -28,6 +34,9 @@ impl<S: Scheme + ?Sized> Scheme for &S {
     fn step(&self, sys: &mut System) {
         (**self).step(sys)
     }
+    fn program(&self) -> Option<&Program> {
+        (**self).program()
+    }
 }
 
 impl<S: Scheme + ?Sized> Scheme for Box<S> {
@@ -36,6 +45,9 @@ impl<S: Scheme + ?Sized> Scheme for Box<S> {
     }
     fn step(&self, sys: &mut System) {
         (**self).step(sys)
+    }
+    fn program(&self) -> Option<&Program> {
+        (**self).program()
     }
 }
 
@@ -54,25 +66,34 @@ pub fn apply_stage(sys: &mut System, stage: &Stage) {
     }
 }
 
-/// A scheme whose stages are walked at run time (schemes given as strings on the command line).
+/// A scheme compiled from a string at run time and walked stage by stage (schemes given on the
+/// command line). Same parser, same program and same sub-flow calls as `dpd_scheme!`, hence
+/// bitwise the same trajectory.
 #[derive(Clone, Debug)]
 pub struct DynScheme {
     name: String,
-    stages: Vec<Stage>,
+    program: Program,
 }
 
 impl DynScheme {
-    /// A scheme applying `stages` in order. The stages are trusted to be valid, as produced by
-    /// the scheme language.
-    pub fn from_stages(name: impl Into<String>, stages: Vec<Stage>) -> Self {
-        DynScheme {
+    /// Compile `source` in the scheme language; errors carry byte spans into `source`.
+    pub fn compile(
+        name: impl Into<String>,
+        source: &str,
+        options: &Options,
+    ) -> Result<Self, Vec<Diagnostic>> {
+        Ok(DynScheme {
             name: name.into(),
-            stages,
-        }
+            program: dpd_ir::compile_with(source, options)?,
+        })
     }
 
-    pub fn stages(&self) -> &[Stage] {
-        &self.stages
+    /// A scheme running a program the language produced.
+    pub fn from_program(name: impl Into<String>, program: Program) -> Self {
+        DynScheme {
+            name: name.into(),
+            program,
+        }
     }
 }
 
@@ -81,9 +102,12 @@ impl Scheme for DynScheme {
         &self.name
     }
     fn step(&self, sys: &mut System) {
-        for stage in &self.stages {
+        for stage in &self.program.stages {
             apply_stage(sys, stage);
         }
+    }
+    fn program(&self) -> Option<&Program> {
+        Some(&self.program)
     }
 }
 

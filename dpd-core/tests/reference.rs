@@ -3,21 +3,10 @@
 mod common;
 
 use dpd_core::reference::{Aboba, DpdS1, VelocityVerlet};
-use dpd_core::{DynScheme, Flow, Scheme, Stage, SweepOrder};
-use dpd_ir::Coeff;
+use dpd_core::{DynScheme, Scheme};
 
-fn stages(seq: &[(Flow, f64, u8)]) -> Vec<Stage> {
-    seq.iter()
-        .map(|&(flow, c, stream)| Stage {
-            flow,
-            coeff: Coeff {
-                value: c,
-                exact: None,
-            },
-            stream,
-            order: SweepOrder::Forward,
-        })
-        .collect()
+fn compiled(source: &str) -> DynScheme {
+    DynScheme::compile(source, source, &Default::default()).unwrap()
 }
 
 fn run(scheme: &dyn Scheme, steps: u64) -> dpd_core::System {
@@ -28,35 +17,33 @@ fn run(scheme: &dyn Scheme, steps: u64) -> dpd_core::System {
 
 #[test]
 fn interpreter_matches_reference_steps_bitwise() {
-    let cases: [(&dyn Scheme, Vec<Stage>); 3] = [
-        (
-            &VelocityVerlet,
-            stages(&[(Flow::F, 0.5, 0), (Flow::A, 1.0, 0), (Flow::F, 0.5, 1)]),
-        ),
-        (
-            &DpdS1,
-            stages(&[
-                (Flow::Bbk, 1.0, 0),
-                (Flow::B, 0.5, 0),
-                (Flow::A, 1.0, 0),
-                (Flow::B, 0.5, 0),
-            ]),
-        ),
-        (
-            &Aboba,
-            stages(&[
-                (Flow::A, 0.5, 0),
-                (Flow::B, 0.5, 0),
-                (Flow::O, 1.0, 0),
-                (Flow::B, 0.5, 0),
-                (Flow::A, 0.5, 0),
-            ]),
-        ),
+    let cases: [(&dyn Scheme, &str); 3] = [
+        (&VelocityVerlet, "F(1/2) A F(1/2)"),
+        (&DpdS1, "ObBAB"),
+        (&Aboba, "ABOBA"),
     ];
-    for (reference, seq) in cases {
-        let a = run(reference, 300);
-        let b = run(&DynScheme::from_stages("dyn", seq), 300);
+    for (reference, source) in cases {
+        let dynamic = compiled(source);
+        let a = run(reference, 1000);
+        let b = run(&dynamic, 1000);
         assert!(common::same_bits(&a, &b), "{}", reference.name());
+        // The counters of the run agree with the costs the language promises.
+        let mut sys = common::standard_box(4.5, 0.05, 4);
+        sys.advance(&dynamic, 1).unwrap();
+        let before = sys.counters();
+        sys.advance(&dynamic, 10).unwrap();
+        let program = dynamic.program().unwrap();
+        let after = sys.counters();
+        assert_eq!(
+            after.force_evaluations - before.force_evaluations,
+            10 * program.force_evaluations_per_step() as u64,
+            "{source}"
+        );
+        assert_eq!(
+            after.pair_distance_evaluations - before.pair_distance_evaluations,
+            10 * program.pair_distance_evaluations_per_step() as u64,
+            "{source}"
+        );
     }
 }
 

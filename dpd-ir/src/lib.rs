@@ -6,4 +6,6 @@ pub mod analysis;
 pub mod lang;
 pub mod program;
 
-pub use program::{Coeff, Flow, Stage, SweepOrder};
+pub use analysis::{analyse, Analysis};
+pub use lang::{compile, compile_with, Diagnostic, Options};
+pub use program::{Coeff, Evaluations, Flow, Program, Stage, SweepOrder};

@@ -167,6 +167,11 @@ impl Program {
         count
     }
 
+    /// Order analysis of the step (algorithms.md section 4).
+    pub fn analysis(&self) -> crate::analysis::Analysis {
+        crate::analysis::analyse(&self.unmerged_stages)
+    }
+
     /// Force evaluations per step, see [`Program::evaluations_per_step`].
     pub fn force_evaluations_per_step(&self) -> usize {
         self.evaluations_per_step().force
