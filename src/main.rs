@@ -1,5 +1,10 @@
-//! The `dpd` command-line program.
+//! The `dpd` command-line program. Without a subcommand it runs the main job: the standard
+//! gamma = 4.5 comparison of velocity Verlet, DPD-S1 and ABOBA.
 
-fn main() {
-    eprintln!("dpd: the command-line program is under construction");
+mod cli;
+
+use clap::Parser;
+
+fn main() -> std::process::ExitCode {
+    cli::main(cli::Cli::parse())
 }
