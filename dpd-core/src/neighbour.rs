@@ -18,6 +18,8 @@ pub struct CellGrid {
     cell_start: Vec<u32>,
     members: Vec<u32>,
     cell_of: Vec<u32>,
+    /// Positions gathered in cell order (scratch of `for_each_pair`).
+    sorted: Vec<Vec3>,
 }
 
 impl CellGrid {
@@ -67,43 +69,100 @@ impl CellGrid {
         }
     }
 
-    /// Append to `out` every `j > i` with `|min_image(q_i - q_j)| < cutoff`, in ascending order.
-    pub fn neighbours_of(
-        &self,
-        i: usize,
+    /// Call `f(i, j, r2)` once for every unordered pair `i != j` with squared minimum-image
+    /// distance `r2 < cutoff^2`, `cutoff` at most the cell edge of the last [`CellGrid::build`].
+    ///
+    /// Each cell is paired with itself and with 13 of its 26 neighbours (a half stencil), and
+    /// positions are first gathered in cell order, so the inner loop reads contiguous memory.
+    /// Periodic images come from a per-neighbour shift instead of a minimum-image test per pair.
+    pub fn for_each_pair(
+        &mut self,
         q: &[Vec3],
         bx: &PeriodicBox,
         cutoff: f64,
-        out: &mut Vec<u32>,
+        mut f: impl FnMut(u32, u32, f64),
     ) {
-        let first = out.len();
         let cut2 = cutoff * cutoff;
-        let qi = q[i];
-        let visit = |c: usize, out: &mut Vec<u32>| {
-            let members =
-                &self.members[self.cell_start[c] as usize..self.cell_start[c + 1] as usize];
-            for &j in members {
-                if (j as usize) > i && bx.min_image(qi - q[j as usize]).norm_squared() < cut2 {
-                    out.push(j);
+        if self.dims == [1, 1, 1] {
+            for i in 0..q.len() {
+                for j in i + 1..q.len() {
+                    let r2 = bx.min_image(q[i] - q[j]).norm_squared();
+                    if r2 < cut2 {
+                        f(i as u32, j as u32, r2);
+                    }
                 }
             }
-        };
-        if self.dims == [1, 1, 1] {
-            visit(0, out);
-        } else {
-            let [nx, ny, nz] = self.dims;
-            let c = self.cell_of[i] as usize;
-            let (cx, cy, cz) = (c / (ny * nz), (c / nz) % ny, c % nz);
-            for dx in [nx - 1, 0, 1] {
-                for dy in [ny - 1, 0, 1] {
-                    for dz in [nz - 1, 0, 1] {
-                        let n = (((cx + dx) % nx) * ny + (cy + dy) % ny) * nz + (cz + dz) % nz;
-                        visit(n, out);
+            return;
+        }
+        self.sorted.clear();
+        self.sorted
+            .extend(self.members.iter().map(|&i| q[i as usize]));
+        let [nx, ny, nz] = self.dims;
+        let l = bx.lengths();
+        let range = |c: usize| self.cell_start[c] as usize..self.cell_start[c + 1] as usize;
+        for cx in 0..nx {
+            for cy in 0..ny {
+                for cz in 0..nz {
+                    let c = (cx * ny + cy) * nz + cz;
+                    let own = range(c);
+                    for a in own.clone() {
+                        for b in a + 1..own.end {
+                            let r2 = (self.sorted[a] - self.sorted[b]).norm_squared();
+                            if r2 < cut2 {
+                                f(self.members[a], self.members[b], r2);
+                            }
+                        }
+                    }
+                    for &[dx, dy, dz] in &HALF_STENCIL {
+                        let (x, sx) = wrap_cell(cx, dx, nx, l.x);
+                        let (y, sy) = wrap_cell(cy, dy, ny, l.y);
+                        let (z, sz) = wrap_cell(cz, dz, nz, l.z);
+                        let shift = Vec3::new(sx, sy, sz);
+                        let other = range((x * ny + y) * nz + z);
+                        for a in own.clone() {
+                            let qa = self.sorted[a] + shift;
+                            for b in other.clone() {
+                                let r2 = (qa - self.sorted[b]).norm_squared();
+                                if r2 < cut2 {
+                                    f(self.members[a], self.members[b], r2);
+                                }
+                            }
+                        }
                     }
                 }
             }
         }
-        out[first..].sort_unstable();
+    }
+}
+
+/// The 13 neighbour offsets of a half stencil: one of each pair `{d, -d}`.
+const HALF_STENCIL: [[isize; 3]; 13] = [
+    [1, 0, 0],
+    [1, 1, 0],
+    [1, -1, 0],
+    [0, 1, 0],
+    [1, 0, 1],
+    [1, 0, -1],
+    [0, 1, 1],
+    [0, 1, -1],
+    [1, 1, 1],
+    [1, 1, -1],
+    [1, -1, 1],
+    [1, -1, -1],
+    [0, 0, 1],
+];
+
+/// Cell index `c + d` on a periodic axis of `n` cells, and the shift to add to a position in
+/// cell `c` so that it sits next to the (unwrapped) image of cell `c + d`.
+#[inline(always)]
+fn wrap_cell(c: usize, d: isize, n: usize, length: f64) -> (usize, f64) {
+    let t = c as isize + d;
+    if t < 0 {
+        (n - 1, length)
+    } else if t as usize >= n {
+        (0, -length)
+    } else {
+        (t as usize, 0.0)
     }
 }
 
@@ -114,6 +173,8 @@ pub struct VerletList {
     reference: Vec<Vec3>,
     start: Vec<u32>,
     partners: Vec<u32>,
+    /// Pairs found by the last build (scratch).
+    found: Vec<(u32, u32)>,
     grid: CellGrid,
     built: bool,
     builds: u64,
@@ -127,6 +188,7 @@ impl VerletList {
             reference: Vec::new(),
             start: Vec::new(),
             partners: Vec::new(),
+            found: Vec::new(),
             grid: CellGrid::default(),
             built: false,
             builds: 0,
@@ -154,12 +216,29 @@ impl VerletList {
         }
         let reach = rc + self.skin;
         self.grid.build(q, bx, reach);
+        self.found.clear();
+        let found = &mut self.found;
+        self.grid.for_each_pair(q, bx, reach, |i, j, _| {
+            found.push(if i < j { (i, j) } else { (j, i) })
+        });
+        // Counting sort by i into rows, then each row by j: pairs in (i, j) order.
         self.start.clear();
-        self.partners.clear();
-        self.start.push(0);
+        self.start.resize(q.len() + 1, 0);
+        for &(i, _) in &self.found {
+            self.start[i as usize + 1] += 1;
+        }
         for i in 0..q.len() {
-            self.grid.neighbours_of(i, q, bx, reach, &mut self.partners);
-            self.start.push(self.partners.len() as u32);
+            self.start[i + 1] += self.start[i];
+        }
+        self.partners.clear();
+        self.partners.resize(self.found.len(), 0);
+        let mut fill = self.start.clone();
+        for &(i, j) in &self.found {
+            self.partners[fill[i as usize] as usize] = j;
+            fill[i as usize] += 1;
+        }
+        for i in 0..q.len() {
+            self.partners[self.start[i] as usize..self.start[i + 1] as usize].sort_unstable();
         }
         self.reference.clear();
         self.reference.extend_from_slice(q);
