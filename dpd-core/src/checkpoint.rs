@@ -1,10 +1,11 @@
 //! Checkpoint and restart.
 //!
 //! A checkpoint holds everything a step depends on: box, parameters, time step, random key,
-//! step counter, positions, momenta, masses, types, neighbour skin, the name of the scheme,
-//! and what a scheme carries between steps (the full forces of velocity Verlet, with their
-//! noise). Pair geometry and conservative forces are not stored: they are pure functions of
-//! the positions, recomputed in the same pair order, hence bitwise equal. A restarted run
+//! step counter, positions, momenta, masses, types, neighbour skin, the positions of the last
+//! neighbour-list build (which fix the sweep order and the next rebuild), the name of the
+//! scheme, and what a scheme carries between steps (the full forces of velocity Verlet, with
+//! their noise). Pair geometry and conservative forces are not stored: they are pure functions
+//! of the positions and the list, recomputed in the same pair order, hence bitwise equal. A restarted run
 //! therefore continues bit for bit like an uninterrupted one.
 //!
 //! File layout: 8 magic bytes `DPDCHKPT`, format version (u32 LE), payload length (u64 LE),
@@ -22,7 +23,7 @@ use std::io::Write;
 use std::path::Path;
 
 const MAGIC: &[u8; 8] = b"DPDCHKPT";
-const VERSION: u32 = 1;
+const VERSION: u32 = 2;
 const HEADER: usize = 8 + 4 + 8 + 4;
 
 #[derive(Serialize, Deserialize)]
@@ -39,6 +40,9 @@ struct Payload {
     mass: Vec<f64>,
     kind: Vec<u16>,
     full_forces: Option<Vec<Vec3>>,
+    /// Positions at the last neighbour-list build: the sweep order and the rebuild times
+    /// depend on them (empty before the first build).
+    list_reference: Vec<Vec3>,
 }
 
 impl System {
@@ -61,6 +65,7 @@ impl System {
             mass: self.mass.clone(),
             kind: self.kind.clone(),
             full_forces: self.full_valid.then(|| self.full.clone()),
+            list_reference: self.list.reference().to_vec(),
         };
         let data = bincode::serialize(&payload).map_err(|e| CheckpointError::Decode {
             path: path.display().to_string(),
@@ -143,6 +148,17 @@ impl System {
             .build()
             .map_err(invalid)?;
         sys.step = payload.step;
+        if !payload.list_reference.is_empty() {
+            if payload.list_reference.len() != sys.len() {
+                return Err(invalid(crate::ParamError::new(
+                    "list_reference",
+                    format!("{} entries", payload.list_reference.len()),
+                    format!("must have {} entries", sys.len()),
+                )));
+            }
+            let rc = sys.params.rc();
+            sys.list.rebuild(&payload.list_reference, &sys.bx, rc);
+        }
         if let Some(full) = payload.full_forces {
             if full.len() != sys.len() {
                 return Err(invalid(crate::ParamError::new(

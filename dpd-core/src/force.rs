@@ -1,20 +1,25 @@
-//! Per-particle forces summed over the interacting pairs, in `(i, j)` order.
+//! Per-particle forces summed over the interacting pairs in sweep order.
 
-use crate::pairs::Pair;
+use crate::pairs::{Disjoint, PairTable};
 use crate::params::Params;
 use crate::rng::pair_normal;
 use crate::system::System;
 use crate::Vec3;
+use dpd_ir::SweepOrder;
 
 /// `out_i = F^C_i = sum_j a_ij (1 - r_ij/r_c) e_ij`.
-pub(crate) fn conservative(pairs: &[Pair], params: &Params, kind: &[u16], out: &mut [Vec3]) {
+pub(crate) fn conservative(pairs: &PairTable, params: &Params, kind: &[u16], out: &mut [Vec3]) {
     out.fill(Vec3::zeros());
-    for pair in pairs {
+    let out = Disjoint::new(out);
+    pairs.visit(SweepOrder::Forward, |pair| {
         let (i, j) = (pair.i as usize, pair.j as usize);
         let f = params.a(kind[i], kind[j]) * pair.w * pair.e;
-        out[i] += f;
-        out[j] -= f;
-    }
+        // SAFETY: `visit` never hands two pairs sharing a particle to different threads.
+        unsafe {
+            *out.get(i) += f;
+            *out.get(j) -= f;
+        }
+    });
 }
 
 /// Full DPD force at the current momenta into `sys.full`:
@@ -35,9 +40,10 @@ pub(crate) fn full(sys: &mut System, stream: u8) {
         ..
     } = *sys;
     full.fill(Vec3::zeros());
+    let full = Disjoint::new(full);
     let gamma = params.gamma();
     let noise = params.sigma() / dt.sqrt();
-    for pair in pairs {
+    pairs.visit(SweepOrder::Forward, |pair| {
         let (i, j) = (pair.i as usize, pair.j as usize);
         let u = pair.e.dot(&(p[i] * inv_mass[i] - p[j] * inv_mass[j]));
         let mut f = params.a(kind[i], kind[j]) * pair.w - gamma * pair.wr * pair.wr * u;
@@ -45,7 +51,10 @@ pub(crate) fn full(sys: &mut System, stream: u8) {
             f += noise * pair.wr * pair_normal(seed, step, stream, pair.i, pair.j);
         }
         let fe = f * pair.e;
-        full[i] += fe;
-        full[j] -= fe;
-    }
+        // SAFETY: `visit` never hands two pairs sharing a particle to different threads.
+        unsafe {
+            *full.get(i) += fe;
+            *full.get(j) -= fe;
+        }
+    });
 }

@@ -1,46 +1,67 @@
 //! Neighbour search in O(N): a cell grid, and a Verlet list with a skin built from it.
 //!
-//! The Verlet list is a half list in compressed rows: for every particle `i` the partners
-//! `j > i` within `r_c + skin` at build time, in ascending order. Walking it row by row gives the
-//! pairs sorted by `(i, j)`, which is the documented sweep order of the core; since pairs beyond
-//! the cutoff are skipped, the order of the *interacting* pairs does not depend on when the list
-//! was built. The list is rebuilt when some particle has moved more than `skin / 2` since the
-//! last build.
+//! # Sweep order
+//!
+//! The Verlet list fixes the order in which every pairwise sub-flow visits the pairs. Cells of
+//! edge at least `r_c + skin` own the pairs between themselves and 13 of their neighbours (a
+//! half stencil spanning offsets `[0, 1] x [-1, 1] x [-1, 1]`). Cells are coloured by
+//! `(cx mod 2, cy mod 3, cz mod 3)`: two cells of one colour are at least two cells apart
+//! along x or three along y or z, so the pairs they own share no particle and can be processed
+//! concurrently. The order is: colours 0..18, within a colour cells by ascending index, within
+//! a cell the pairs in scan order (own pairs `(a, b)` with `a < b` in cell order, then the
+//! stencil neighbours in a fixed order). Within a colour, cells commute, so this order gives the
+//! same result on any number of threads. Where the box is too small for the colouring (fewer
+//! than 4 cells along x or 3 along y or z, or counts that are not multiples of 2 and 3 after
+//! rounding down) there is one colour and processing is sequential.
+//!
+//! The order is a function of the positions at the last build; a checkpoint stores those
+//! positions so that a restarted run rebuilds the same list. The list is rebuilt when a particle
+//! has moved more than `skin / 2` since the last build.
 
 use crate::boundary::PeriodicBox;
 use crate::Vec3;
 
-/// Particles binned into cubic-ish cells of edge at least `min_cell`.
+/// Particles binned into cells of edge at least `min_cell`.
 #[derive(Clone, Debug, Default)]
 pub struct CellGrid {
     dims: [usize; 3],
+    coloured: bool,
     /// `cell_start[c]..cell_start[c + 1]` indexes `members` for cell `c`.
     cell_start: Vec<u32>,
     members: Vec<u32>,
     cell_of: Vec<u32>,
-    /// Positions gathered in cell order (scratch of `for_each_pair`).
+    /// Positions gathered in cell order.
     sorted: Vec<Vec3>,
 }
 
+/// Colours of the cell colouring, `2 * 3 * 3`.
+pub const COLOURS: usize = 18;
+
 impl CellGrid {
-    /// Bin `q` into cells of edge >= `min_cell`. With fewer than 3 cells along some axis the
-    /// grid degenerates to one cell (all pairs are then searched, which is O(N^2) but only
-    /// happens for boxes smaller than three cutoffs).
+    /// Bin `q` into cells of edge >= `min_cell`; cell counts are rounded down to multiples of
+    /// (2, 3, 3) where that keeps at least (4, 3, 3) cells, which makes the grid colourable. With
+    /// fewer than 3 cells along some axis the grid degenerates to one cell (all pairs are then
+    /// searched: O(N^2), only for boxes smaller than three cutoffs).
     pub fn build(&mut self, q: &[Vec3], bx: &PeriodicBox, min_cell: f64) {
         let l = bx.lengths();
-        let mut dims = [1usize; 3];
-        for k in 0..3 {
+        let fit = |k: usize| {
             let n = (l[k] / min_cell).floor();
-            dims[k] = if n.is_finite() && n >= 3.0 {
+            if n.is_finite() && n >= 3.0 {
                 (n as usize).min(1 << 10)
             } else {
                 1
-            };
-        }
+            }
+        };
+        let mut dims = [fit(0), fit(1), fit(2)];
         if dims.contains(&1) {
             dims = [1, 1, 1];
         }
+        let coloured = dims[0] >= 4 && dims[1] >= 3 && dims[2] >= 3;
+        if coloured {
+            dims = [dims[0] / 2 * 2, dims[1] / 3 * 3, dims[2] / 3 * 3];
+        }
         self.dims = dims;
+        self.coloured = coloured;
         let ncell = dims[0] * dims[1] * dims[2];
         self.cell_of.clear();
         self.cell_of.extend(q.iter().map(|x| {
@@ -67,75 +88,96 @@ impl CellGrid {
             self.members[fill[c as usize] as usize] = i as u32;
             fill[c as usize] += 1;
         }
+        self.sorted.clear();
+        self.sorted
+            .extend(self.members.iter().map(|&i| q[i as usize]));
     }
 
-    /// Call `f(i, j, r2)` once for every unordered pair `i != j` with squared minimum-image
-    /// distance `r2 < cutoff^2`, `cutoff` at most the cell edge of the last [`CellGrid::build`].
+    /// Number of cells.
+    pub fn cells(&self) -> usize {
+        self.dims.iter().product()
+    }
+
+    /// Whether cells of one colour own disjoint pairs (see the module docs).
+    pub fn is_coloured(&self) -> bool {
+        self.coloured
+    }
+
+    /// Colour of cell `c`, in `0..COLOURS` (always 0 when the grid is not coloured).
+    pub fn colour(&self, c: usize) -> usize {
+        if !self.coloured {
+            return 0;
+        }
+        let [_, ny, nz] = self.dims;
+        let (cx, cy, cz) = (c / (ny * nz), (c / nz) % ny, c % nz);
+        (cx % 2) * 9 + (cy % 3) * 3 + cz % 3
+    }
+
+    /// Call `f(i, j, r2)` for every pair owned by cell `c` with squared minimum-image distance
+    /// `r2 < cutoff^2` (`cutoff` at most the cell edge of the last build), in scan order.
     ///
-    /// Each cell is paired with itself and with 13 of its 26 neighbours (a half stencil), and
-    /// positions are first gathered in cell order, so the inner loop reads contiguous memory.
-    /// Periodic images come from a per-neighbour shift instead of a minimum-image test per pair.
-    pub fn for_each_pair(
-        &mut self,
-        q: &[Vec3],
+    /// Positions are read in cell order, so the inner loop reads contiguous memory; periodic
+    /// images come from a per-neighbour shift instead of a minimum-image test per pair.
+    pub fn for_each_pair_of_cell(
+        &self,
+        c: usize,
         bx: &PeriodicBox,
         cutoff: f64,
         mut f: impl FnMut(u32, u32, f64),
     ) {
         let cut2 = cutoff * cutoff;
+        let range = |c: usize| self.cell_start[c] as usize..self.cell_start[c + 1] as usize;
+        let own = range(c);
         if self.dims == [1, 1, 1] {
-            for i in 0..q.len() {
-                for j in i + 1..q.len() {
-                    let r2 = bx.min_image(q[i] - q[j]).norm_squared();
+            for a in own.clone() {
+                for b in a + 1..own.end {
+                    let r2 = bx.min_image(self.sorted[a] - self.sorted[b]).norm_squared();
                     if r2 < cut2 {
-                        f(i as u32, j as u32, r2);
+                        f(self.members[a], self.members[b], r2);
                     }
                 }
             }
             return;
         }
-        self.sorted.clear();
-        self.sorted
-            .extend(self.members.iter().map(|&i| q[i as usize]));
+        for a in own.clone() {
+            for b in a + 1..own.end {
+                let r2 = (self.sorted[a] - self.sorted[b]).norm_squared();
+                if r2 < cut2 {
+                    f(self.members[a], self.members[b], r2);
+                }
+            }
+        }
         let [nx, ny, nz] = self.dims;
+        let (cx, cy, cz) = (c / (ny * nz), (c / nz) % ny, c % nz);
         let l = bx.lengths();
-        let range = |c: usize| self.cell_start[c] as usize..self.cell_start[c + 1] as usize;
-        for cx in 0..nx {
-            for cy in 0..ny {
-                for cz in 0..nz {
-                    let c = (cx * ny + cy) * nz + cz;
-                    let own = range(c);
-                    for a in own.clone() {
-                        for b in a + 1..own.end {
-                            let r2 = (self.sorted[a] - self.sorted[b]).norm_squared();
-                            if r2 < cut2 {
-                                f(self.members[a], self.members[b], r2);
-                            }
-                        }
-                    }
-                    for &[dx, dy, dz] in &HALF_STENCIL {
-                        let (x, sx) = wrap_cell(cx, dx, nx, l.x);
-                        let (y, sy) = wrap_cell(cy, dy, ny, l.y);
-                        let (z, sz) = wrap_cell(cz, dz, nz, l.z);
-                        let shift = Vec3::new(sx, sy, sz);
-                        let other = range((x * ny + y) * nz + z);
-                        for a in own.clone() {
-                            let qa = self.sorted[a] + shift;
-                            for b in other.clone() {
-                                let r2 = (qa - self.sorted[b]).norm_squared();
-                                if r2 < cut2 {
-                                    f(self.members[a], self.members[b], r2);
-                                }
-                            }
-                        }
+        for &[dx, dy, dz] in &HALF_STENCIL {
+            let (x, sx) = wrap_cell(cx, dx, nx, l.x);
+            let (y, sy) = wrap_cell(cy, dy, ny, l.y);
+            let (z, sz) = wrap_cell(cz, dz, nz, l.z);
+            let shift = Vec3::new(sx, sy, sz);
+            let other = range((x * ny + y) * nz + z);
+            for a in own.clone() {
+                let qa = self.sorted[a] + shift;
+                for b in other.clone() {
+                    let r2 = (qa - self.sorted[b]).norm_squared();
+                    if r2 < cut2 {
+                        f(self.members[a], self.members[b], r2);
                     }
                 }
             }
         }
     }
+
+    /// Call `f(i, j, r2)` once for every unordered pair with `r2 < cutoff^2`, cell by cell.
+    pub fn for_each_pair(&self, bx: &PeriodicBox, cutoff: f64, mut f: impl FnMut(u32, u32, f64)) {
+        for c in 0..self.cells() {
+            self.for_each_pair_of_cell(c, bx, cutoff, &mut f);
+        }
+    }
 }
 
-/// The 13 neighbour offsets of a half stencil: one of each pair `{d, -d}`.
+/// The 13 neighbour offsets of a half stencil: one of each pair `{d, -d}`, all with
+/// `dx` in `{0, 1}`.
 const HALF_STENCIL: [[isize; 3]; 13] = [
     [1, 0, 0],
     [1, 1, 0],
@@ -166,15 +208,23 @@ fn wrap_cell(c: usize, d: isize, n: usize, length: f64) -> (usize, f64) {
     }
 }
 
-/// Half Verlet list with a skin, rebuilt on displacement.
+/// Pairs grouped for the sweep order: `runs[k]..runs[k + 1]` is the k-th cell's run of
+/// pairs, `colours[c]..colours[c + 1]` the runs of colour `c`; runs of one colour are
+/// independent when `independent` is true.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Runs {
+    pub runs: Vec<u32>,
+    pub colours: Vec<u32>,
+    pub independent: bool,
+}
+
+/// Verlet list with a skin, in sweep order, rebuilt on displacement.
 #[derive(Clone, Debug)]
 pub struct VerletList {
     skin: f64,
     reference: Vec<Vec3>,
-    start: Vec<u32>,
-    partners: Vec<u32>,
-    /// Pairs found by the last build (scratch).
-    found: Vec<(u32, u32)>,
+    candidates: Vec<(u32, u32)>,
+    groups: Runs,
     grid: CellGrid,
     built: bool,
     builds: u64,
@@ -186,9 +236,8 @@ impl VerletList {
         VerletList {
             skin,
             reference: Vec::new(),
-            start: Vec::new(),
-            partners: Vec::new(),
-            found: Vec::new(),
+            candidates: Vec::new(),
+            groups: Runs::default(),
             grid: CellGrid::default(),
             built: false,
             builds: 0,
@@ -204,47 +253,55 @@ impl VerletList {
         self.builds
     }
 
-    /// Forget the list; the next [`VerletList::update`] rebuilds it.
-    pub fn invalidate(&mut self) {
-        self.built = false;
+    /// Positions of the last build (empty before the first).
+    pub fn reference(&self) -> &[Vec3] {
+        &self.reference
     }
 
     /// Rebuild if needed for positions `q` and cutoff `rc`; returns whether it rebuilt.
     pub fn update(&mut self, q: &[Vec3], bx: &PeriodicBox, rc: f64) -> bool {
-        if self.built && !self.moved_too_far(q, bx) {
-            return false;
+        let rebuild = self.needs_rebuild(q, bx);
+        if rebuild {
+            self.rebuild(q, bx, rc);
         }
+        rebuild
+    }
+
+    /// Build the list for positions `q`, whatever they moved.
+    pub fn rebuild(&mut self, q: &[Vec3], bx: &PeriodicBox, rc: f64) {
         let reach = rc + self.skin;
         self.grid.build(q, bx, reach);
-        self.found.clear();
-        let found = &mut self.found;
-        self.grid.for_each_pair(q, bx, reach, |i, j, _| {
-            found.push(if i < j { (i, j) } else { (j, i) })
-        });
-        // Counting sort by i into rows, then each row by j: pairs in (i, j) order.
-        self.start.clear();
-        self.start.resize(q.len() + 1, 0);
-        for &(i, _) in &self.found {
-            self.start[i as usize + 1] += 1;
+        let mut by_colour: Vec<Vec<usize>> = vec![Vec::new(); COLOURS];
+        for c in 0..self.grid.cells() {
+            by_colour[self.grid.colour(c)].push(c);
         }
-        for i in 0..q.len() {
-            self.start[i + 1] += self.start[i];
+        self.candidates.clear();
+        self.groups.runs.clear();
+        self.groups.colours.clear();
+        self.groups.runs.push(0);
+        self.groups.colours.push(0);
+        for cells in &by_colour {
+            for &c in cells {
+                let found = &mut self.candidates;
+                self.grid
+                    .for_each_pair_of_cell(c, bx, reach, |i, j, _| found.push((i, j)));
+                let end = self.candidates.len() as u32;
+                if end != *self.groups.runs.last().unwrap_or(&0) {
+                    self.groups.runs.push(end);
+                }
+            }
+            self.groups.colours.push(self.groups.runs.len() as u32 - 1);
         }
-        self.partners.clear();
-        self.partners.resize(self.found.len(), 0);
-        let mut fill = self.start.clone();
-        for &(i, j) in &self.found {
-            self.partners[fill[i as usize] as usize] = j;
-            fill[i as usize] += 1;
-        }
-        for i in 0..q.len() {
-            self.partners[self.start[i] as usize..self.start[i + 1] as usize].sort_unstable();
-        }
+        self.groups.independent = self.grid.is_coloured();
         self.reference.clear();
         self.reference.extend_from_slice(q);
         self.built = true;
         self.builds += 1;
-        true
+    }
+
+    /// Whether [`VerletList::update`] would rebuild for positions `q`.
+    pub fn needs_rebuild(&self, q: &[Vec3], bx: &PeriodicBox) -> bool {
+        !self.built || self.moved_too_far(q, bx)
     }
 
     fn moved_too_far(&self, q: &[Vec3], bx: &PeriodicBox) -> bool {
@@ -256,19 +313,14 @@ impl VerletList {
             })
     }
 
-    /// Partners `j > i` of particle `i`, ascending.
-    #[inline(always)]
-    pub fn partners(&self, i: usize) -> &[u32] {
-        &self.partners[self.start[i] as usize..self.start[i + 1] as usize]
+    /// Candidate pairs within `r_c + skin` at the last build, in sweep order.
+    pub fn candidates(&self) -> &[(u32, u32)] {
+        &self.candidates
     }
 
-    /// Number of particles the list was built for.
-    pub fn len(&self) -> usize {
-        self.start.len().saturating_sub(1)
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
+    /// Grouping of [`VerletList::candidates`] into cell runs and colours.
+    pub fn groups(&self) -> &Runs {
+        &self.groups
     }
 }
 
@@ -290,11 +342,11 @@ mod tests {
     }
 
     #[test]
-    fn verlet_list_matches_brute_force() {
+    fn verlet_list_matches_brute_force_and_colours_are_disjoint() {
         let mut rng = rand::rngs::StdRng::seed_from_u64(1);
-        for l in [2.5, 4.2, 7.0] {
+        for (l, coloured) in [(2.5, false), (4.2, false), (7.0, true), (9.5, true)] {
             let bx = PeriodicBox::new([l, l * 1.3, l * 0.9]).unwrap();
-            let q: Vec<Vec3> = (0..300)
+            let q: Vec<Vec3> = (0..400)
                 .map(|_| {
                     bx.wrap(Vec3::new(
                         rng.random::<f64>() * l,
@@ -305,11 +357,32 @@ mod tests {
                 .collect();
             let mut list = VerletList::new(0.3);
             list.update(&q, &bx, 1.0);
-            let mut got = Vec::new();
-            for i in 0..q.len() {
-                got.extend(list.partners(i).iter().map(|&j| (i as u32, j)));
-            }
+            let mut got: Vec<(u32, u32)> = list
+                .candidates()
+                .iter()
+                .map(|&(i, j)| (i.min(j), i.max(j)))
+                .collect();
+            got.sort_unstable();
             assert_eq!(got, brute(&q, &bx, 1.3), "box {l}");
+            let g = list.groups();
+            assert_eq!(g.independent, coloured, "box {l}");
+            if g.independent {
+                for c in 0..COLOURS {
+                    let mut seen = std::collections::HashMap::new();
+                    for k in g.colours[c]..g.colours[c + 1] {
+                        let run = g.runs[k as usize]..g.runs[k as usize + 1];
+                        for &(i, j) in &list.candidates()[run.start as usize..run.end as usize] {
+                            for p in [i, j] {
+                                assert_eq!(
+                                    *seen.entry(p).or_insert(k),
+                                    k,
+                                    "particle {p} in two runs of colour {c}"
+                                );
+                            }
+                        }
+                    }
+                }
+            }
         }
     }
 

@@ -4,7 +4,7 @@ use crate::boundary::PeriodicBox;
 use crate::error::{positive, ParamError};
 use crate::force;
 use crate::neighbour::VerletList;
-use crate::pairs::{self, Pair};
+use crate::pairs::{Pair, PairTable};
 use crate::params::Params;
 use crate::Vec3;
 
@@ -42,7 +42,7 @@ pub struct System {
     pub(crate) seed: u64,
     pub(crate) step: u64,
     pub(crate) list: VerletList,
-    pub(crate) pairs: Vec<Pair>,
+    pub(crate) pairs: PairTable,
     pub(crate) pairs_valid: bool,
     pub(crate) conservative: Vec<Vec3>,
     pub(crate) conservative_valid: bool,
@@ -188,7 +188,7 @@ impl SystemBuilder {
             seed: self.seed,
             step: 0,
             list: VerletList::new(self.skin),
-            pairs: Vec::new(),
+            pairs: PairTable::default(),
             pairs_valid: false,
             conservative: vec![Vec3::zeros(); n],
             conservative_valid: false,
@@ -303,7 +303,8 @@ impl System {
         self.full_valid = false;
     }
 
-    /// The interacting pairs at the current positions, in `(i, j)` order (evaluated if needed).
+    /// The interacting pairs at the current positions, in the sweep order documented in
+    /// [`crate::neighbour`] (evaluated if needed).
     pub fn pairs(&mut self) -> &[Pair] {
         self.ensure_pairs();
         &self.pairs
@@ -318,10 +319,32 @@ impl System {
     pub(crate) fn ensure_pairs(&mut self) {
         if !self.pairs_valid {
             self.list.update(&self.q, &self.bx, self.params.rc());
-            pairs::collect(&self.list, &self.q, &self.bx, &self.params, &mut self.pairs);
+            self.pairs
+                .collect(&self.list, &self.q, &self.bx, &self.params);
             self.pairs_valid = true;
             self.counters.pair_distance_evaluations += 1;
         }
+    }
+
+    /// Call `f` with the pairs and conservative forces of the current positions, for
+    /// observables, without changing when the neighbour list is rebuilt (the sweep order
+    /// depends on the rebuild times, so measuring must not move them): when the list is
+    /// due for a rebuild, a scratch list is used and nothing is cached.
+    pub(crate) fn with_forces<R>(
+        &mut self,
+        f: impl FnOnce(&System, &PairTable, &[Vec3]) -> R,
+    ) -> R {
+        if self.pairs_valid || !self.list.needs_rebuild(&self.q, &self.bx) {
+            self.ensure_conservative();
+            return f(self, &self.pairs, &self.conservative);
+        }
+        let mut list = VerletList::new(0.0);
+        list.rebuild(&self.q, &self.bx, self.params.rc());
+        let mut pairs = PairTable::default();
+        pairs.collect(&list, &self.q, &self.bx, &self.params);
+        let mut forces = vec![Vec3::zeros(); self.len()];
+        force::conservative(&pairs, &self.params, &self.kind, &mut forces);
+        f(self, &pairs, &forces)
     }
 
     pub(crate) fn ensure_conservative(&mut self) {

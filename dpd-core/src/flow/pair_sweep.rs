@@ -1,4 +1,4 @@
-use crate::pairs::Pair;
+use crate::pairs::{Disjoint, Pair};
 use crate::rng::pair_normal;
 use crate::system::System;
 use dpd_ir::SweepOrder;
@@ -16,7 +16,12 @@ struct PairState<'a> {
 /// Visit the interacting pairs successively in `order`; `update` returns the change `du` of
 /// the pair's relative normal velocity, applied as `p_i += du/mu e`, `p_j -= du/mu e`.
 #[inline(always)]
-fn sweep(sys: &mut System, stream: u8, order: SweepOrder, update: impl Fn(&PairState) -> f64) {
+fn sweep(
+    sys: &mut System,
+    stream: u8,
+    order: SweepOrder,
+    update: impl Fn(&PairState) -> f64 + Sync,
+) {
     sys.ensure_pairs();
     let System {
         ref pairs,
@@ -29,11 +34,15 @@ fn sweep(sys: &mut System, stream: u8, order: SweepOrder, update: impl Fn(&PairS
         ..
     } = *sys;
     let noisy = params.sigma() > 0.0;
-    let mut visit = |pair: &Pair| {
+    let p = Disjoint::new(p);
+    pairs.visit(order, |pair| {
         let (i, j) = (pair.i as usize, pair.j as usize);
+        // SAFETY: `visit` never hands two pairs sharing a particle to different threads, and
+        // the two references below are to distinct particles (i != j).
+        let (pi, pj) = unsafe { (p.get(i), p.get(j)) };
         let mu = inv_mass[i] + inv_mass[j];
         let state = PairState {
-            u: pair.e.dot(&(p[i] * inv_mass[i] - p[j] * inv_mass[j])),
+            u: pair.e.dot(&(*pi * inv_mass[i] - *pj * inv_mass[j])),
             mu,
             pair,
             a: params.a(kind[i], kind[j]),
@@ -44,13 +53,9 @@ fn sweep(sys: &mut System, stream: u8, order: SweepOrder, update: impl Fn(&PairS
             },
         };
         let dp = (update(&state) / mu) * pair.e;
-        p[i] += dp;
-        p[j] -= dp;
-    };
-    match order {
-        SweepOrder::Forward => pairs.iter().for_each(&mut visit),
-        SweepOrder::Reverse => pairs.iter().rev().for_each(&mut visit),
-    }
+        *pi += dp;
+        *pj -= dp;
+    });
 }
 
 /// Standard deviation of the exact OU noise over a step with `x = tau h`:

@@ -45,7 +45,7 @@ impl Rdf {
         let scale = self.hist.len() as f64 / self.r_max;
         let hist = &mut self.hist;
         let last = hist.len() - 1;
-        self.grid.for_each_pair(q, bx, self.r_max, |_, _, r2| {
+        self.grid.for_each_pair(bx, self.r_max, |_, _, r2| {
             hist[((r2.sqrt() * scale) as usize).min(last)] += 1;
         });
         self.samples += 1;

@@ -40,21 +40,22 @@ pub fn kinetic_temperature(sys: &System) -> f64 {
 /// Pair potential `phi(r) = (a r_c / 2)(1 - r/r_c)^2`; in 3-D
 /// `lap_i U = sum_j [a / r_c - 2 a (1 - r/r_c) / r]`.
 pub fn thermo(sys: &mut System) -> Thermo {
-    sys.ensure_conservative();
     let rc = sys.params.rc();
-    let (mut u, mut lap, mut virial) = (0.0, 0.0, 0.0);
-    for pair in &sys.pairs {
-        let a = sys
-            .params
-            .a(sys.kind[pair.i as usize], sys.kind[pair.j as usize]);
-        u += 0.5 * a * rc * pair.w * pair.w;
-        lap += 2.0 * (a / rc - 2.0 * a * pair.w / pair.r);
-        virial += pair.r * a * pair.w;
-    }
-    let numerator: f64 = sys.conservative.iter().map(|f| f.norm_squared()).sum();
     let n = sys.len() as f64;
     let volume = sys.bx.volume();
     let tk = kinetic_temperature(sys);
+    let (u, lap, virial, numerator) = sys.with_forces(|sys, pairs, forces| {
+        let (params, kind) = (&sys.params, &sys.kind);
+        let (mut u, mut lap, mut virial) = (0.0, 0.0, 0.0);
+        for pair in pairs.iter() {
+            let a = params.a(kind[pair.i as usize], kind[pair.j as usize]);
+            u += 0.5 * a * rc * pair.w * pair.w;
+            lap += 2.0 * (a / rc - 2.0 * a * pair.w / pair.r);
+            virial += pair.r * a * pair.w;
+        }
+        let numerator: f64 = forces.iter().map(|f| f.norm_squared()).sum();
+        (u, lap, virial, numerator)
+    });
     Thermo {
         kinetic_temperature: tk,
         config_numerator: numerator,
