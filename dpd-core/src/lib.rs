@@ -8,9 +8,9 @@
 //! - `q` positions (wrapped into the periodic box), `p` momenta, `m` masses; for a pair
 //!   `q_ij = q_i - q_j` under minimum image, `e_ij = q_ij / r_ij` points from j to i.
 //! - A sub-flow advances the state by a step length `h = c * dt`.
-//! - Pairwise sweeps visit the interacting pairs in one documented order: pairs `(i, j)`,
-//!   `i < j`, sorted lexicographically (`SweepOrder::Forward`), or that order reversed. The order
-//!   depends neither on when the neighbour list was built nor on the thread count.
+//! - Pairwise sweeps visit the interacting pairs in one documented order, colour by colour of
+//!   a cell colouring (see [`neighbour`]), or exactly that order reversed. The order does not
+//!   depend on the thread count; cells of one colour are processed in parallel.
 
 pub mod boundary;
 pub mod checkpoint;

@@ -56,8 +56,8 @@ impl Flow {
 
 /// The order in which a successive pair sweep visits the pair list.
 ///
-/// `Forward` is the documented base order of `dpd-core` (pairs sorted by `(i, j)`, `i < j`);
-/// `Reverse` visits the same pairs last to first.
+/// `Forward` is the documented base order of `dpd-core` (colour by colour of its cell
+/// colouring); `Reverse` visits the same pairs last to first.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum SweepOrder {
     #[default]
