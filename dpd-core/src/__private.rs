@@ -4,4 +4,18 @@
 pub use crate::flow::{bbk, drift, full_force, kick, ou, trotter};
 pub use crate::scheme::Scheme;
 pub use crate::system::System;
-pub use dpd_ir::SweepOrder;
+pub use dpd_ir::{Program, SweepOrder};
+
+/// Compiles the source of a `dpd_scheme!` again at run time, for `Scheme::program`. The macro
+/// compiled the same source with the same options at expansion time, so this cannot fail
+/// unless the macro and the run time use different versions of the scheme language.
+pub fn compile_program(src: &str, allow_inconsistent: bool) -> Program {
+    dpd_ir::compile_with(src, &dpd_ir::Options { allow_inconsistent }).unwrap_or_else(|errors| {
+        let errors: Vec<String> = errors.iter().map(ToString::to_string).collect();
+        panic!(
+            "dpd_scheme!({src:?}) compiled at expansion time but fails at run time ({}): \
+             the macro and the run time use different versions of dpd-ir",
+            errors.join("; ")
+        )
+    })
+}

@@ -1,9 +1,42 @@
-//! The `dpd_scheme!` procedural macro (work in progress).
+#![doc = include_str!("dpd_scheme.md")]
+//!
+//! # Pipeline
+//!
+//! `parse` reads the input (`args` the options, from one table), compiles the scheme with
+//! `dpd_ir::compile_with` and places every diagnostic on the literal; `valid` checks the order
+//! assertions; `expand` writes the scheme type; on any error `fallback` writes the error and a
+//! stub. `runtime` finds the path of the run time.
+
+mod args;
+mod expand;
+mod fallback;
+mod parse;
+mod runtime;
+mod valid;
 
 use proc_macro::TokenStream;
 
-/// Placeholder until the macro lands.
+#[doc = include_str!("dpd_scheme.md")]
 #[proc_macro]
-pub fn dpd_scheme(_input: TokenStream) -> TokenStream {
-    TokenStream::new()
+pub fn dpd_scheme(input: TokenStream) -> TokenStream {
+    let rt = match runtime::path() {
+        Ok(rt) => rt,
+        Err(e) => return e.to_compile_error().into(),
+    };
+    syn::parse::<parse::Input>(input)
+        .and_then(|input| expand::expand(&input, &rt))
+        .unwrap_or_else(|e| fallback::expand(&rt, e))
+        .into()
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn docs_list_every_option() {
+        let docs = include_str!("dpd_scheme.md");
+        for o in crate::args::OPTIONS {
+            let row = format!("| `{}` | {} |", o.syntax, o.meaning);
+            assert!(docs.contains(&row), "missing docs row {row}");
+        }
+    }
 }

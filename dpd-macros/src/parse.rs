@@ -1,0 +1,132 @@
+//! The macro input, and the scheme compiled from it with every diagnostic placed on the string
+//! literal.
+
+use std::ops::Range;
+
+use dpd_ir::{Diagnostic, Options, Program};
+use proc_macro2::Span;
+use syn::parse::{Parse, ParseStream};
+use syn::{LitStr, Token};
+
+use crate::args::Args;
+
+/// `dpd_scheme!("source", options...)`.
+pub struct Input {
+    pub source: LitStr,
+    pub args: Args,
+}
+
+impl Parse for Input {
+    fn parse(input: ParseStream) -> syn::Result<Self> {
+        let source: LitStr = input.parse().map_err(|e| {
+            syn::Error::new(
+                e.span(),
+                "expected the scheme as a string literal, e.g. dpd_scheme!(\"ABOBA\"); the macro \
+                 reads it at compile time (for a scheme known only at run time use \
+                 DynScheme::compile)",
+            )
+        })?;
+        let mut args = Args::default();
+        while !input.is_empty() {
+            input.parse::<Token![,]>()?;
+            if input.is_empty() {
+                break;
+            }
+            args.parse_option(input)?;
+        }
+        Ok(Input { source, args })
+    }
+}
+
+impl Input {
+    /// Compiles the scheme as the run time will; every diagnostic becomes an error at the
+    /// string literal.
+    pub fn compile(&self) -> syn::Result<Program> {
+        let src = self.source.value();
+        let options = Options {
+            allow_inconsistent: self.args.allow_inconsistent,
+        };
+        dpd_ir::compile_with(&src, &options).map_err(|diagnostics| {
+            let mut errors = diagnostics.iter().map(|d| self.error(&src, d));
+            let first = errors.next().unwrap_or_else(|| {
+                syn::Error::new(self.source.span(), "the scheme failed to compile")
+            });
+            errors.fold(first, |mut all, e| {
+                all.combine(e);
+                all
+            })
+        })
+    }
+
+    /// The error for `d`: at the bytes it is about where the compiler can point inside a
+    /// literal (nightly), else at the whole literal, with the offending part quoted.
+    fn error(&self, src: &str, d: &Diagnostic) -> syn::Error {
+        let span = self
+            .subspan(src, &d.span)
+            .unwrap_or_else(|| self.source.span());
+        syn::Error::new(span, format!("{}{}", d.message, excerpt(src, &d.span)))
+    }
+
+    /// The span of `range` (bytes of the value) inside the literal token, when the literal
+    /// holds the value verbatim (no escapes), so that value and token offsets differ by the
+    /// opening quote only.
+    fn subspan(&self, src: &str, range: &Range<usize>) -> Option<Span> {
+        let token = self.source.token();
+        let repr = token.to_string();
+        let start = repr.find('"')? + 1;
+        let verbatim = repr.get(start..start + src.len()) == Some(src)
+            && repr[start + src.len()..].trim_start_matches('#') == "\"";
+        verbatim.then_some(())?;
+        token.subspan(start + range.start..start + range.end)
+    }
+}
+
+/// The line of `src` holding `range`, with carets under the range: "\n  ABQ\n    ^". Empty
+/// when the range is the whole scheme (the literal itself is underlined then).
+fn excerpt(src: &str, range: &Range<usize>) -> String {
+    if src.trim().is_empty() || (range.start == 0 && range.end >= src.len()) {
+        return String::new();
+    }
+    marked_line(src, range).unwrap_or_default()
+}
+
+/// `None` if `range` is not on character boundaries of `src`.
+fn marked_line(src: &str, range: &Range<usize>) -> Option<String> {
+    let start = range.start;
+    let line_start = src.get(..start)?.rfind('\n').map_or(0, |i| i + 1);
+    let line_end = src
+        .get(start..)?
+        .find('\n')
+        .map_or(src.len(), |i| start + i);
+    let end = range.end.clamp(start, line_end);
+    let width = |r: Range<usize>| src.get(r).map(|s| s.chars().count());
+    Some(format!(
+        "\n  {}\n  {}{}",
+        src[line_start..line_end].replace('\t', " "),
+        " ".repeat(width(line_start..start)?),
+        "^".repeat(width(start..end)?.max(1))
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::excerpt;
+
+    #[test]
+    fn excerpt_marks_the_range_on_its_line() {
+        assert_eq!(excerpt("ABQ", &(2..3)), "\n  ABQ\n    ^");
+        assert_eq!(
+            excerpt("let x = 1;\nA(y) B", &(13..14)),
+            "\n  A(y) B\n    ^"
+        );
+        assert_eq!(excerpt("AB(1/0", &(6..6)), "\n  AB(1/0\n        ^");
+    }
+
+    #[test]
+    fn no_excerpt_for_the_whole_scheme_or_a_bad_range() {
+        assert_eq!(excerpt("BOB", &(0..3)), "");
+        assert_eq!(excerpt("  ", &(0..0)), "");
+        assert_eq!(excerpt("A\u{e9}B", &(2..3)), "");
+        assert_eq!(excerpt("AB", &(5..6)), "");
+    }
+}

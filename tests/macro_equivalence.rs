@@ -1,0 +1,169 @@
+//! `dpd_scheme!` against the hand-written reference steps and against `DynScheme`: bitwise
+//! equal trajectories, evaluation counts as the program states, and the program exposed.
+
+// The core's test set-up (the standard box, bitwise comparison) names the core `dpd_core`;
+// `dpd` re-exports everything it uses.
+extern crate dpd as dpd_core;
+#[path = "../dpd-core/tests/common/mod.rs"]
+mod common;
+
+use dpd::lang::Options;
+use dpd::{dpd_scheme, reference, DynScheme, Scheme, System};
+
+const DT: f64 = 0.01;
+const SEED: u64 = 7;
+
+/// The standard box of algorithms.md section 8 (N = 500, density 3, a = 25, gamma = 4.5).
+fn standard_box() -> System {
+    common::standard_box(4.5, DT, SEED)
+}
+
+/// Runs both schemes from the same standard box and asserts bitwise equal states after every
+/// step.
+fn assert_same_trajectory(a: &impl Scheme, b: &impl Scheme, steps: u64) {
+    let (mut sa, mut sb) = (standard_box(), standard_box());
+    for step in 0..steps {
+        sa.advance(a, 1).unwrap();
+        sb.advance(b, 1).unwrap();
+        assert!(
+            common::same_bits(&sa, &sb),
+            "{} and {} differ after step {}",
+            a.name(),
+            b.name(),
+            step + 1
+        );
+    }
+}
+
+fn dynamic(source: &str) -> DynScheme {
+    DynScheme::compile(source, source, &Options::default()).unwrap()
+}
+
+#[test]
+fn aboba_matches_the_reference_bitwise() {
+    assert_same_trajectory(&dpd_scheme!("ABOBA"), &reference::Aboba, 1000);
+}
+
+#[test]
+fn dpd_s1_matches_the_reference_bitwise() {
+    assert_same_trajectory(&dpd_scheme!("ObBAB"), &reference::DpdS1, 1000);
+}
+
+#[test]
+fn velocity_verlet_matches_the_reference_bitwise() {
+    assert_same_trajectory(
+        &dpd_scheme!("F(1/2) A F(1/2)"),
+        &reference::VelocityVerlet,
+        1000,
+    );
+}
+
+#[test]
+fn obab_with_exact_o_matches_dyn_scheme_bitwise() {
+    assert_same_trajectory(&dpd_scheme!("OBAB"), &dynamic("OBAB"), 1000);
+}
+
+/// One macro invocation per string, each against `DynScheme` of the same string.
+macro_rules! against_dyn_scheme {
+    ($($source:literal),* $(,)?) => {
+        $(assert_same_trajectory(&dpd_scheme!($source), &dynamic($source), 200);)*
+    };
+}
+
+#[test]
+fn generated_schemes_match_dyn_scheme_bitwise() {
+    against_dyn_scheme!(
+        "BAOOAB",
+        "OBABO",
+        "TAT",
+        "ATA",
+        "BAOAB",
+        "S(x1)S(x0)S(x1) O",
+        "prk(b = [7/24, 3/4, -1/24], bh = [2/3, -2/3, 1], kick = F)",
+        "prk(b = [7/24, 3/4, -1/24], bh = [2/3, -2/3, 1], kick = B) O",
+        "A(1/4) B(1/3) A(1/2) O(1/2) B(2/3) Ob(1/2) A(1/4)",
+        "A(sqrt(2)/4) B A(1/2 - sqrt(2)/4) O A(1/2) B",
+        "BA O< O> AB",
+        "A T< T> A",
+    );
+}
+
+#[test]
+fn evaluation_counts_match_the_program() {
+    fn check(scheme: impl Scheme, force: u64, distance: u64) {
+        let program = scheme.program().unwrap();
+        assert_eq!(program.force_evaluations_per_step() as u64, force);
+        assert_eq!(
+            program.pair_distance_evaluations_per_step() as u64,
+            distance
+        );
+        let mut sys = standard_box();
+        // The first step fills the caches; count over the steady state after it.
+        sys.advance(&scheme, 1).unwrap();
+        let before = sys.counters();
+        let steps = 20;
+        sys.advance(&scheme, steps).unwrap();
+        let after = sys.counters();
+        let per_step = |a: u64, b: u64| (a - b) as f64 / steps as f64;
+        assert_eq!(
+            (
+                per_step(after.force_evaluations, before.force_evaluations),
+                per_step(
+                    after.pair_distance_evaluations,
+                    before.pair_distance_evaluations
+                ),
+            ),
+            (force as f64, distance as f64),
+            "{}",
+            scheme.name()
+        );
+    }
+    check(dpd_scheme!("ABOBA"), 1, 1);
+    check(dpd_scheme!("OBAB"), 1, 1);
+    check(dpd_scheme!("F(1/2) A F(1/2)"), 1, 1);
+    check(dpd_scheme!("BAOAB"), 1, 2);
+}
+
+#[test]
+fn program_exposes_stages_symmetry_and_analysis() {
+    let aboba = dpd_scheme!("ABOBA", name = "aboba", invariant_order >= 2);
+    assert_eq!(aboba.name(), "aboba");
+    let program = aboba.program().unwrap();
+    assert_eq!(program.source, "ABOBA");
+    assert_eq!(program.to_string(), "A(1/2) B(1/2) O(1) B(1/2) A(1/2)");
+    assert_eq!(program.stages.len(), 5);
+    assert!(program.is_symmetric());
+    let analysis = program.analysis();
+    assert!(analysis.consistent);
+    assert_eq!(analysis.deterministic_order, 2);
+    assert!(analysis.invariant_measure_order.unwrap() >= 2);
+    // The same program instance on every call.
+    assert!(std::ptr::eq(program, aboba.program().unwrap()));
+
+    let abo = dpd_scheme!("ABO");
+    assert!(!abo.program().unwrap().is_symmetric());
+    assert_eq!(
+        abo.program().unwrap().analysis().invariant_measure_order,
+        Some(1)
+    );
+}
+
+#[test]
+fn allow_inconsistent_reproduces_m_shardlow_1() {
+    let m1 = dpd_scheme!("S(x1) S(-x0) S(x1) Ob", allow_inconsistent);
+    let analysis = m1.program().unwrap().analysis();
+    assert!(!analysis.consistent);
+    assert!((analysis.coefficient_sums.a - 4.405).abs() < 1e-3);
+    assert_same_trajectory(
+        &m1,
+        &DynScheme::compile(
+            "m1",
+            "S(x1) S(-x0) S(x1) Ob",
+            &Options {
+                allow_inconsistent: true,
+            },
+        )
+        .unwrap(),
+        20,
+    );
+}
