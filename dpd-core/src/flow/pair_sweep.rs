@@ -58,12 +58,13 @@ fn sweep(
     });
 }
 
-/// Standard deviation of the exact OU noise over a step with `x = tau h`:
-/// `s_n sqrt((1 - exp(-2 tau h)) / (2 tau))`, which with `sigma^2 = 2 gamma kbt` simplifies to
-/// `sqrt(kbt mu (1 - exp(-2x)))` and never divides by `tau`. Zero for `x <= 0`.
+/// Standard deviation of the exact OU noise over a step with `x = tau h`, given
+/// `em1 = exp(-x) - 1`: `s_n sqrt((1 - exp(-2 tau h)) / (2 tau))`, which with
+/// `sigma^2 = 2 gamma kbt` simplifies to `sqrt(kbt mu (1 - exp(-2x)))` and never divides by
+/// `tau`; `1 - exp(-2x) = -em1 (2 + em1)` has no cancellation. Zero for `x <= 0`.
 #[inline(always)]
-fn ou_std(kbt: f64, mu: f64, x: f64) -> f64 {
-    (kbt * mu * -(-2.0 * x).exp_m1()).max(0.0).sqrt()
+fn ou_std(kbt: f64, mu: f64, em1: f64) -> f64 {
+    (kbt * mu * -em1 * (2.0 + em1)).max(0.0).sqrt()
 }
 
 /// O: exact pairwise Ornstein-Uhlenbeck sweep,
@@ -75,8 +76,8 @@ pub fn ou(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
         return;
     }
     sweep(sys, stream, order, |s| {
-        let x = gamma * s.pair.wr * s.pair.wr * s.mu * h;
-        s.u * (-x).exp_m1() + ou_std(kbt, s.mu, x) * s.r
+        let em1 = (-gamma * s.pair.wr * s.pair.wr * s.mu * h).exp_m1();
+        s.u * em1 + ou_std(kbt, s.mu, em1) * s.r
     });
 }
 
@@ -105,7 +106,8 @@ pub fn trotter(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
     sys.counters.force_evaluations += 1;
     sweep(sys, stream, order, |s| {
         let x = gamma * s.pair.wr * s.pair.wr * s.mu * h;
-        let phi1 = if x == 0.0 { 1.0 } else { -(-x).exp_m1() / x };
-        s.u * (-x).exp_m1() + s.a * s.pair.w * s.mu * h * phi1 + ou_std(kbt, s.mu, x) * s.r
+        let em1 = (-x).exp_m1();
+        let phi1 = if x == 0.0 { 1.0 } else { -em1 / x };
+        s.u * em1 + s.a * s.pair.w * s.mu * h * phi1 + ou_std(kbt, s.mu, em1) * s.r
     });
 }
