@@ -1,0 +1,58 @@
+//! Time per step of velocity Verlet and ABOBA on the equilibrium box (density 3, a = 25,
+//! gamma = 4.5, k_B T = 1), for side-by-side comparisons with other engines
+//! (`bench/side_by_side.sh`). Prints one JSON object per scheme.
+//!
+//! Usage: `cargo run --release --example step_timing -- N STEPS THREADS SKIN`
+
+use dpd::init::{cubic_box, maxwell_momenta, uniform_positions};
+use dpd::reference::{Aboba, VelocityVerlet};
+use dpd::{Params, Scheme, System};
+use std::time::Instant;
+
+fn arg<T: std::str::FromStr>(k: usize, default: T) -> T {
+    match std::env::args().nth(k) {
+        None => default,
+        Some(s) => s.parse().unwrap_or_else(|_| {
+            eprintln!(
+                "step_timing: argument {k} = {s:?} is not valid; usage: N STEPS THREADS SKIN"
+            );
+            std::process::exit(2)
+        }),
+    }
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let n: usize = arg(1, 24_000);
+    let steps: u64 = arg(2, 100);
+    let threads: usize = arg(3, 1);
+    let skin: f64 = arg(4, 0.0);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()?;
+    for scheme in [&VelocityVerlet as &(dyn Scheme + Sync), &Aboba] {
+        let bx = cubic_box(n, 3.0)?;
+        let params = Params::builder().a(25.0).gamma(4.5).kbt(1.0).build()?;
+        let q = uniform_positions(&bx, n, 1);
+        let p = maxwell_momenta(&vec![1.0; n], 1.0, 1);
+        let mut sys = System::builder(params, bx, q)
+            .momenta(p)
+            .dt(0.04)
+            .seed(1)
+            .skin(skin)
+            .build()?;
+        let seconds = pool.install(|| -> Result<f64, dpd::BlowUp> {
+            // Relax the random start, then time.
+            sys.advance(scheme, 50)?;
+            let start = Instant::now();
+            sys.advance(scheme, steps)?;
+            Ok(start.elapsed().as_secs_f64())
+        })?;
+        println!(
+            "{{\"engine\": \"dpd\", \"scheme\": \"{}\", \"n\": {n}, \"threads\": {threads}, \"skin\": {skin}, \"us_per_step\": {:.1}, \"ns_per_particle_step\": {:.1}}}",
+            scheme.name(),
+            seconds / steps as f64 * 1e6,
+            seconds / (steps as f64 * n as f64) * 1e9
+        );
+    }
+    Ok(())
+}
