@@ -19,12 +19,18 @@
 //! A, B and F accept any sign of `h`. The stochastic sweeps have no backward-in-time version:
 //! for `h < 0` they apply only their deterministic part (no noise); schemes never do this, the
 //! scheme language rejects it.
+//!
+//! Not a letter of the scheme language: [`exponential_velocity`], the per-particle
+//! exponential-time-differencing velocity update of SETD and MSETD (algorithms.md section 5),
+//! for the hand-written schemes of `dpd-schemes`.
 
 mod drift;
+mod exponential;
 mod kick;
 mod pair_sweep;
 
 pub use drift::drift;
+pub use exponential::{exponential_velocity, EtdNoise};
 pub use kick::{full_force, kick};
 pub use pair_sweep::{bbk, ou, trotter};
 
