@@ -26,3 +26,11 @@ pub fn expand(rt: &TokenStream, error: syn::Error) -> TokenStream {
         #stub
     })
 }
+
+/// All of `errors` as one, reported together; `None` if there are none.
+pub fn combine(errors: impl IntoIterator<Item = syn::Error>) -> Option<syn::Error> {
+    errors.into_iter().reduce(|mut all, e| {
+        all.combine(e);
+        all
+    })
+}

@@ -9,6 +9,7 @@ use syn::parse::{Parse, ParseStream};
 use syn::{LitStr, Token};
 
 use crate::args::Args;
+use crate::fallback::combine;
 
 /// `dpd_scheme!("source", options...)`.
 pub struct Input {
@@ -28,7 +29,9 @@ impl Parse for Input {
         })?;
         let mut args = Args::default();
         while !input.is_empty() {
-            input.parse::<Token![,]>()?;
+            input.parse::<Token![,]>().map_err(|e| {
+                syn::Error::new(e.span(), "expected `,` between the scheme and the options")
+            })?;
             if input.is_empty() {
                 break;
             }
@@ -47,13 +50,8 @@ impl Input {
             allow_inconsistent: self.args.allow_inconsistent,
         };
         dpd_ir::compile_with(&src, &options).map_err(|diagnostics| {
-            let mut errors = diagnostics.iter().map(|d| self.error(&src, d));
-            let first = errors.next().unwrap_or_else(|| {
+            combine(diagnostics.iter().map(|d| self.error(&src, d))).unwrap_or_else(|| {
                 syn::Error::new(self.source.span(), "the scheme failed to compile")
-            });
-            errors.fold(first, |mut all, e| {
-                all.combine(e);
-                all
             })
         })
     }

@@ -5,6 +5,7 @@ use dpd_ir::analysis::{self, Analysis};
 use dpd_ir::Program;
 
 use crate::args::{Args, Bound};
+use crate::fallback::combine;
 
 /// Every failed assertion of `args` about `program`, as errors at the assertion's tokens.
 pub fn check(program: &Program, args: &Args) -> syn::Result<()> {
@@ -30,14 +31,7 @@ pub fn check(program: &Program, args: &Args) -> syn::Result<()> {
             .as_ref()
             .and_then(|b| invariant_order(b, &found)),
     ];
-    match errors {
-        [None, None] => Ok(()),
-        [Some(e), None] | [None, Some(e)] => Err(e),
-        [Some(mut e), Some(more)] => {
-            e.combine(more);
-            Err(e)
-        }
-    }
+    combine(errors.into_iter().flatten()).map_or(Ok(()), Err)
 }
 
 /// `order >= N`: the Hamiltonian part (O dropped) matches `exp(dt (A + B))` through degree N.
@@ -56,32 +50,38 @@ fn deterministic_order(bound: &Bound, found: &Analysis) -> Option<syn::Error> {
     } else {
         return None;
     };
-    Some(failed(bound, &why))
+    Some(failed(bound, "does not hold", &why))
 }
 
 /// `invariant_order >= N`: the left-ideal bound on the order of the invariant measure.
 fn invariant_order(bound: &Bound, found: &Analysis) -> Option<syn::Error> {
     let why = match found.invariant_measure_order {
-        None => "the bound does not apply to schemes with F stages (not a splitting of exact \
-                 flows); measure the invariant measure instead"
-            .to_string(),
+        None => {
+            return Some(failed(
+                bound,
+                "cannot be checked",
+                "the invariant-measure bound does not apply to schemes with F stages (not a \
+                 splitting of exact flows); measure it instead",
+            ))
+        }
         Some(p) if p < bound.min => {
             let term = found
                 .first_nonvanishing
                 .as_ref()
                 .map_or(String::new(), |t| {
-                    format!(": L_{p} rho = {t} does not vanish")
+                    format!(" (first non-vanishing term L_{p} rho = {t})")
                 });
-            format!("the analysis bounds the invariant-measure order by {p}{term}")
+            format!("the analysis finds invariant-measure order {p}{term}")
         }
         Some(_) => return None,
     };
-    Some(failed(bound, &why))
+    Some(failed(bound, "does not hold", &why))
 }
 
-fn failed(bound: &Bound, why: &str) -> syn::Error {
+/// "`order >= 3` does not hold: why", at the assertion's tokens.
+fn failed(bound: &Bound, verdict: &str, why: &str) -> syn::Error {
     syn::Error::new_spanned(
         &bound.tokens,
-        format!("`{}` does not hold: {why}", bound.tokens),
+        format!("`{}` {verdict}: {why}", bound.tokens),
     )
 }

@@ -1,0 +1,5 @@
+const ABOBA: &str = "ABOBA";
+
+fn main() {
+    let _ = dpd::dpd_scheme!(ABOBA);
+}

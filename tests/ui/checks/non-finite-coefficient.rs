@@ -1,0 +1,3 @@
+fn main() {
+    let _ = dpd::dpd_scheme!("A(1/0) B O B A");
+}
