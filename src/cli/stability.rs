@@ -26,13 +26,13 @@ pub struct Args {
     #[arg(long)]
     particles: Option<usize>,
     /// Frictions, comma-separated (replaces the matrix's list)
-    #[arg(long, value_delimiter = ',')]
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     gamma: Vec<f64>,
     /// Masses, comma-separated (replaces the matrix's list)
-    #[arg(long, value_delimiter = ',')]
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     mass: Vec<f64>,
     /// Time steps, comma-separated (replaces the matrix's list)
-    #[arg(long, value_delimiter = ',')]
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     dt: Vec<f64>,
     /// Random seed of the start and of the noise
     #[arg(long)]
