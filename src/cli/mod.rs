@@ -1,24 +1,77 @@
 //! Subcommands of the `dpd` program, one module each.
 
+mod check;
+mod orderings;
+mod progress;
+mod run;
+mod schemes;
+mod stability;
+mod sweep;
+
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
 #[derive(Debug, Parser)]
-#[command(name = "dpd", version, about = "Compose, check and run DPD splitting integrators")]
+#[command(
+    name = "dpd",
+    version,
+    about = "Compose, check and run DPD splitting integrators"
+)]
 pub struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
 }
 
 #[derive(Debug, Subcommand)]
-enum Command {}
+enum Command {
+    /// Run one scene with one scheme and print the averaged observables
+    Run(run::Args),
+    /// Run schemes over a geometric range of dt: errors, critical dt, stability, efficiency
+    Sweep(sweep::Args),
+    /// Order analysis of a registry name or a scheme string
+    Check(check::Args),
+    /// Enumerate the distinct consistent splitting strings up to a length
+    Orderings(orderings::Args),
+    /// List the named schemes with their cost and analysed orders
+    Schemes(schemes::Args),
+    /// Run every named scheme over a matrix of gamma, mass and dt: completed, blow-up, insane
+    Stability(stability::Args),
+}
 
 /// Run the parsed command line; the exit code is non-zero for bad input.
 pub fn main(cli: Cli) -> ExitCode {
     match cli.command {
-        None => {
-            eprintln!("dpd: the main job is under construction");
+        None => sweep::main_job(),
+        Some(Command::Run(args)) => run::main(args),
+        Some(Command::Sweep(args)) => sweep::main(args),
+        Some(Command::Check(args)) => check::main(args),
+        Some(Command::Orderings(args)) => orderings::main(args),
+        Some(Command::Schemes(args)) => schemes::main(args),
+        Some(Command::Stability(args)) => stability::main(args),
+    }
+}
+
+/// Exit code of invalid input (the same as clap's usage errors).
+const BAD_INPUT: u8 = 2;
+/// Exit code of a run stopped by Ctrl-C (128 + SIGINT).
+const INTERRUPTED: u8 = 130;
+
+/// Print `message` as an error of the program and return the bad-input exit code.
+fn bad_input(message: impl std::fmt::Display) -> ExitCode {
+    eprintln!("dpd: error: {message}");
+    ExitCode::from(BAD_INPUT)
+}
+
+/// Print a JSON value on stdout.
+fn print_json(value: &impl serde::Serialize) -> ExitCode {
+    match serde_json::to_string_pretty(value) {
+        Ok(text) => {
+            println!("{text}");
             ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("dpd: error: cannot write JSON: {e}");
+            ExitCode::FAILURE
         }
     }
 }

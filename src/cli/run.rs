@@ -1,0 +1,148 @@
+//! `dpd run`: one scene with one scheme; prints the observables averaged over the runs.
+
+use super::{bad_input, print_json, progress, INTERRUPTED};
+use dpd::measure::runner::{lock, run_parallel, Control, Job, RunResult};
+use dpd::measure::{report, Aggregate, Overrides, Scene};
+use dpd::schemes::registry::resolve;
+use dpd::Scheme;
+use serde::Serialize;
+use std::collections::HashMap;
+use std::process::ExitCode;
+use std::sync::Mutex;
+
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    #[command(flatten)]
+    scene: Overrides,
+    /// Print one JSON object on stdout instead of the table
+    #[arg(long)]
+    json: bool,
+}
+
+/// What `dpd run --json` prints: the combined observables of the runs, their details and the
+/// effective scene.
+#[derive(Serialize)]
+struct RunReport<'a> {
+    #[serde(flatten)]
+    combined: Aggregate,
+    steps: u64,
+    /// Some run was stopped by Ctrl-C; the observables cover what it sampled.
+    interrupted: bool,
+    /// The merged stages of the scheme, where it is written in the scheme language.
+    program: Option<String>,
+    results: &'a [RunResult],
+    scene: &'a Scene,
+}
+
+pub fn main(args: Args) -> ExitCode {
+    let scene = match Scene::resolve(&args.scene) {
+        Ok(scene) => scene,
+        Err(e) => return bad_input(e),
+    };
+    let scheme = match resolve(&scene.scheme) {
+        Ok(scheme) => scheme,
+        Err(e) => return bad_input(format!("invalid scheme = {:?}: {e}", scene.scheme)),
+    };
+    let program = scheme.program().map(|p| p.to_string());
+    let what = match &program {
+        Some(p) => format!("scheme {} = {p}", scene.scheme),
+        None => format!("scheme {}", scene.scheme),
+    };
+    eprint!("{}", header(&scene, &what, &[scene.dt]));
+    let jobs: Vec<Job> = (0..scene.runs)
+        .map(|k| Job {
+            scheme: scene.scheme.clone(),
+            dt: scene.dt,
+            seed: scene.seed + k,
+        })
+        .collect();
+    let bar = progress::bar(
+        scene.steps(scene.dt) * scene.runs,
+        format!("{} dt = {}", scene.scheme, scene.dt),
+    );
+    let results = Mutex::new(Vec::new());
+    let control = Control {
+        stop: progress::stop_flag(),
+        progress: &|n| bar.inc(n),
+    };
+    let schemes = HashMap::from([(scene.scheme.clone(), scheme)]);
+    let outcome = run_parallel(&scene, &jobs, &schemes, control, &|r| {
+        lock(&results).push(r)
+    });
+    bar.finish_and_clear();
+    if let Err(e) = outcome {
+        return bad_input(e);
+    }
+    let mut results = results.into_inner().unwrap_or_else(|e| e.into_inner());
+    results.sort_by_key(|r| r.seed);
+    let refs: Vec<&RunResult> = results.iter().collect();
+    let report = RunReport {
+        combined: Aggregate::of(&refs, scene.kbt),
+        steps: scene.steps(scene.dt),
+        interrupted: results.len() < jobs.len() || results.iter().any(|r| r.interrupted),
+        program,
+        results: &results,
+        scene: &scene,
+    };
+    let code = if args.json {
+        print_json(&report)
+    } else {
+        print_table(&report);
+        ExitCode::SUCCESS
+    };
+    if report.interrupted {
+        ExitCode::from(INTERRUPTED)
+    } else {
+        code
+    }
+}
+
+/// Every effective parameter as TOML, after a comment line on `what` and on the steps and
+/// sampling at each of `dts`.
+pub fn header(scene: &Scene, what: &str, dts: &[f64]) -> String {
+    let mut out = format!("# dpd: {what}\n");
+    for &dt in dts {
+        out += &format!(
+            "# at dt = {dt:.4}: {} steps, a sample every {} steps in the last {} %\n",
+            scene.steps(dt),
+            scene.sample_every(dt),
+            100.0 * scene.average_fraction
+        );
+    }
+    out + &scene.to_toml() + "\n"
+}
+
+fn print_table(r: &RunReport) {
+    let mut rows: Vec<Aggregate> = r
+        .results
+        .iter()
+        .map(|run| Aggregate {
+            scheme: format!("seed {}", run.seed),
+            ..Aggregate::of(&[run], r.scene.kbt)
+        })
+        .collect();
+    if rows.len() > 1 {
+        rows.push(Aggregate {
+            scheme: "mean".into(),
+            ..r.combined.clone()
+        });
+    }
+    print!("{}", report::rows_table(&rows));
+    let c = &r.combined;
+    if let Some(f) = c.force_evaluations_per_step {
+        println!("force evaluations per step: {f:.3}");
+    }
+    if let Some(d) = c.diffusion {
+        println!("diffusion coefficient: {d:.5}");
+    }
+    for run in r.results.iter().filter(|run| !run.stable) {
+        println!(
+            "seed {}: {}",
+            run.seed,
+            run.error.as_deref().unwrap_or("unstable")
+        );
+    }
+    if r.interrupted {
+        println!("interrupted: the averages cover the samples taken before Ctrl-C");
+    }
+}

@@ -1,0 +1,172 @@
+//! `dpd sweep` and the main job: schemes over a geometric range of dt, reported as tables,
+//! CSV, JSON (also the resumable results file) and SVG plots.
+
+use super::run::header;
+use super::{bad_input, progress, INTERRUPTED};
+use dpd::measure::sweep::{self, load_finished, run_sweep, Hooks};
+use dpd::measure::{plot, report, Control, Overrides, Scene, SweepResults};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::atomic::Ordering;
+
+/// The main job's scene: the standard gamma = 4.5 comparison, shortened.
+const MAIN_SCENE: &str = include_str!("../../scenes/main.toml");
+
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    #[command(flatten)]
+    scene: Overrides,
+    /// Schemes to compare, comma-separated registry names or scheme strings
+    #[arg(long, value_delimiter = ',')]
+    schemes: Option<Vec<String>>,
+    /// Smallest time step of the grid
+    #[arg(long)]
+    dt_min: Option<f64>,
+    /// Largest time step of the grid
+    #[arg(long)]
+    dt_max: Option<f64>,
+    /// Ratio of neighbouring time steps (default 1.15)
+    #[arg(long)]
+    dt_factor: Option<f64>,
+    /// Scheme whose efficiency is 1
+    #[arg(long)]
+    reference: Option<String>,
+    /// Results file: written after every finished point and read back to resume
+    /// [default: OUT/sweep.json]
+    #[arg(long, value_name = "FILE")]
+    json: Option<PathBuf>,
+    /// Directory of the CSV table and SVG plots
+    #[arg(long, value_name = "DIR", default_value = "results")]
+    out: PathBuf,
+    /// Ignore an existing results file and start afresh
+    #[arg(long)]
+    fresh: bool,
+}
+
+pub fn main(args: Args) -> ExitCode {
+    let mut scene = match Scene::resolve(&args.scene) {
+        Ok(scene) => scene,
+        Err(e) => return bad_input(e),
+    };
+    let mut w = sweep::spec(&scene);
+    if let Some(s) = args.schemes {
+        w.schemes = s;
+    }
+    macro_rules! set {
+        ($($key:ident),*) => { $(if let Some(v) = args.$key { w.$key = v; })* };
+    }
+    set!(dt_min, dt_max, dt_factor, reference);
+    scene.sweep = Some(w);
+    if let Err(e) = scene.validate() {
+        return bad_input(format!("scene: {e}"));
+    }
+    let json = args.json.unwrap_or_else(|| args.out.join("sweep.json"));
+    execute(&scene, &json, &args.out, args.fresh)
+}
+
+/// The main job: `scenes/main.toml` swept into `results/`, resuming an interrupted run.
+pub fn main_job() -> ExitCode {
+    let scene = match Scene::from_toml(MAIN_SCENE, "scenes/main.toml") {
+        Ok(scene) => scene,
+        Err(e) => return bad_input(e),
+    };
+    eprintln!("dpd: the main job (scenes/main.toml); `dpd --help` lists the commands");
+    let out = Path::new("results");
+    execute(&scene, &out.join("main.json"), out, false)
+}
+
+fn execute(scene: &Scene, json: &Path, out: &Path, fresh: bool) -> ExitCode {
+    let w = sweep::spec(scene);
+    let grid = w.grid();
+    let ends: Vec<f64> = grid
+        .first()
+        .into_iter()
+        .chain(grid.last())
+        .copied()
+        .collect();
+    let what = format!("sweep of {}", w.schemes.join(", "));
+    eprint!("{}", header(scene, &what, &ends));
+    let finished = if fresh {
+        Vec::new()
+    } else {
+        match load_finished(json, scene) {
+            Ok(points) => points,
+            Err(e) => return bad_input(e),
+        }
+    };
+    let pending = sweep::pending(scene, &finished);
+    let planned = pending.len() + finished.len();
+    eprintln!(
+        "# {} dt from {} to {}; {} points, {} already in {}",
+        grid.len(),
+        w.dt_min,
+        w.dt_max,
+        sweep::plan(scene).len(),
+        finished.len(),
+        json.display()
+    );
+    if let Err(e) = std::fs::create_dir_all(out) {
+        return bad_input(format!("cannot create {}: {e}", out.display()));
+    }
+    let total: u64 = pending.iter().map(|j| scene.steps(j.dt)).sum();
+    let bar = progress::bar(total, format!("{} points", pending.len()));
+    let save = |r: &SweepResults| {
+        bar.set_message(format!("{} of {planned} points", r.points.len()));
+        if let Err(e) = r.write_json(json) {
+            bar.println(format!(
+                "dpd: warning: cannot write {}: {e}",
+                json.display()
+            ));
+        }
+    };
+    let hooks = Hooks {
+        control: Control {
+            stop: progress::stop_flag(),
+            progress: &|n| bar.inc(n),
+        },
+        on_point: &save,
+    };
+    let results = match run_sweep(scene, finished, hooks) {
+        Ok(r) => r,
+        Err(e) => return bad_input(e),
+    };
+    bar.finish_and_clear();
+    let written = write_outputs(&results, json, out);
+    print!("{}", report::rows_table(&results.rows));
+    println!();
+    print!("{}", report::summary_table(&results.summary, &w.reference));
+    match written {
+        Ok(files) => println!("wrote {}", files.join(", ")),
+        Err(e) => {
+            eprintln!("dpd: error: {e}");
+            return ExitCode::FAILURE;
+        }
+    }
+    if progress::stop_flag().load(Ordering::Relaxed) && !results.complete {
+        println!(
+            "interrupted: {} of {} points done; run the same command again to resume",
+            results.points.len(),
+            sweep::plan(scene).len()
+        );
+        return ExitCode::from(INTERRUPTED);
+    }
+    ExitCode::SUCCESS
+}
+
+/// Write the JSON results, the CSV rows and the plots; the names of the files written.
+fn write_outputs(results: &SweepResults, json: &Path, out: &Path) -> Result<Vec<String>, String> {
+    let fail =
+        |path: &Path, e: &dyn std::fmt::Display| format!("cannot write {}: {e}", path.display());
+    results.write_json(json).map_err(|e| fail(json, &e))?;
+    let stem = json
+        .file_stem()
+        .map_or("sweep".into(), |s| s.to_string_lossy());
+    let csv = out.join(format!("{stem}.csv"));
+    std::fs::write(&csv, report::rows_csv(&results.rows)).map_err(|e| fail(&csv, &e))?;
+    let plots = plot::write_plots(results, out).map_err(|e| fail(out, &e))?;
+    Ok([json.to_path_buf(), csv]
+        .into_iter()
+        .chain(plots)
+        .map(|p| p.display().to_string())
+        .collect())
+}

@@ -1,0 +1,99 @@
+//! Results of independent runs (seeds) at one scheme and time step, combined.
+
+use super::runner::RunResult;
+use dpd_core::observe::Running;
+use serde::Serialize;
+
+/// Means over the stable runs of one (scheme, dt), with the standard error of the mean of
+/// the configurational temperature, and relative errors.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Aggregate {
+    pub scheme: String,
+    pub dt: f64,
+    pub runs: usize,
+    pub stable_runs: usize,
+    /// Every run completed without blow-up.
+    pub stable: bool,
+    /// The first blow-up message, if any.
+    pub error: Option<String>,
+    pub kinetic_temperature: Option<f64>,
+    pub configurational_temperature: Option<f64>,
+    /// Standard error of the mean of T_C over runs (needs two stable runs).
+    pub configurational_temperature_stderr: Option<f64>,
+    pub potential_energy: Option<f64>,
+    pub pressure: Option<f64>,
+    pub ms_per_step: Option<f64>,
+    pub force_evaluations_per_step: Option<f64>,
+    /// Mean diffusion coefficient, where the runs measured one.
+    pub diffusion: Option<f64>,
+    /// (T_K - k_B T) / k_B T.
+    pub kinetic_temperature_error: Option<f64>,
+    /// (T_C - k_B T) / k_B T.
+    pub configurational_temperature_error: Option<f64>,
+    /// Relative to the baseline run (sweeps only).
+    pub potential_energy_error: Option<f64>,
+    pub pressure_error: Option<f64>,
+}
+
+/// Mean of the `Some` values, `None` without any.
+fn mean(values: impl Iterator<Item = Option<f64>>) -> Option<f64> {
+    let mut r = Running::default();
+    values.flatten().for_each(|x| r.push(x));
+    (r.count() > 0).then(|| r.mean())
+}
+
+fn relative(value: Option<f64>, reference: Option<f64>) -> Option<f64> {
+    let (v, r) = (value?, reference?);
+    (r != 0.0).then(|| (v - r) / r.abs())
+}
+
+impl Aggregate {
+    /// Combine `runs` (all of one scheme and dt); temperatures are compared with `kbt`.
+    pub fn of(runs: &[&RunResult], kbt: f64) -> Aggregate {
+        let stable: Vec<_> = runs.iter().filter(|r| r.stable).copied().collect();
+        let over = |f: fn(&RunResult) -> Option<f64>| mean(stable.iter().map(|r| f(r)));
+        let mut tc = Running::default();
+        stable
+            .iter()
+            .filter_map(|r| r.configurational_temperature)
+            .for_each(|x| tc.push(x));
+        let kinetic_temperature = over(|r| r.kinetic_temperature);
+        let configurational_temperature = over(|r| r.configurational_temperature);
+        Aggregate {
+            scheme: runs.first().map_or_else(String::new, |r| r.scheme.clone()),
+            dt: runs.first().map_or(f64::NAN, |r| r.dt),
+            runs: runs.len(),
+            stable_runs: stable.len(),
+            stable: stable.len() == runs.len(),
+            error: runs.iter().find_map(|r| r.error.clone()),
+            kinetic_temperature,
+            configurational_temperature,
+            configurational_temperature_stderr: (tc.count() >= 2)
+                .then(|| (tc.variance() / tc.count() as f64).sqrt()),
+            potential_energy: over(|r| r.potential_energy),
+            pressure: over(|r| r.pressure),
+            ms_per_step: mean(runs.iter().map(|r| r.ms_per_step)),
+            force_evaluations_per_step: mean(runs.iter().map(|r| r.force_evaluations_per_step)),
+            diffusion: over(|r| r.diffusion),
+            kinetic_temperature_error: relative(kinetic_temperature, Some(kbt)),
+            configurational_temperature_error: relative(configurational_temperature, Some(kbt)),
+            potential_energy_error: None,
+            pressure_error: None,
+        }
+    }
+
+    /// Fill the potential-energy and pressure errors against a baseline.
+    pub fn compare_with(&mut self, baseline: &Aggregate) {
+        self.potential_energy_error = relative(self.potential_energy, baseline.potential_energy);
+        self.pressure_error = relative(self.pressure, baseline.pressure);
+    }
+
+    /// The error that decides the critical step: |T_C error|, infinite when a run blew up or
+    /// nothing was measured.
+    pub fn critical_error(&self) -> f64 {
+        match (self.stable, self.configurational_temperature_error) {
+            (true, Some(e)) => e.abs(),
+            _ => f64::INFINITY,
+        }
+    }
+}

@@ -1,0 +1,148 @@
+//! The critical step size: the smallest dt at which an error reaches a threshold
+//! (algorithms.md section 7), by log-log interpolation between the last point below and the
+//! first point at or above it, never by extrapolation.
+
+use serde::Serialize;
+use std::fmt;
+
+/// Where an error curve first reaches a threshold.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(tag = "status", rename_all = "snake_case")]
+pub enum Critical {
+    /// Interpolated (or hit exactly) at `dt`.
+    At { dt: f64 },
+    /// The smallest dt already errs too much: the critical dt is below `dt_min`.
+    BelowRange { dt_min: f64 },
+    /// No point reaches the threshold: the critical dt is above `dt_max`.
+    NotReached { dt_max: f64 },
+    /// The first point at or above the threshold blew up, so there is nothing to interpolate:
+    /// the critical dt lies in `(below, above]`.
+    BlowUp { below: f64, above: f64 },
+}
+
+impl Critical {
+    /// The critical dt where it was found inside the grid.
+    pub fn dt(self) -> Option<f64> {
+        match self {
+            Critical::At { dt } => Some(dt),
+            _ => None,
+        }
+    }
+}
+
+impl fmt::Display for Critical {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Critical::At { dt } => write!(f, "{dt:.4}"),
+            Critical::BelowRange { dt_min } => write!(f, "< {dt_min:.4}"),
+            Critical::NotReached { dt_max } => write!(f, "> {dt_max:.4}"),
+            Critical::BlowUp { below, above } => write!(f, "({below:.4}, {above:.4}] blow-up"),
+        }
+    }
+}
+
+/// The critical dt of the curve `points` = `(dt, |error|)`, sorted by increasing dt; an
+/// infinite or NaN error marks a point that blew up. The first crossing counts. `None` for an
+/// empty curve.
+pub fn critical_dt(points: &[(f64, f64)], threshold: f64) -> Option<Critical> {
+    let (&(dt_min, _), &(dt_max, _)) = (points.first()?, points.last()?);
+    let Some(k) = points
+        .iter()
+        .position(|&(_, e)| e.is_nan() || e >= threshold)
+    else {
+        return Some(Critical::NotReached { dt_max });
+    };
+    let (dt_b, e_b) = points[k];
+    if e_b == threshold {
+        return Some(Critical::At { dt: dt_b });
+    }
+    if k == 0 {
+        return Some(Critical::BelowRange { dt_min });
+    }
+    let (dt_a, e_a) = points[k - 1];
+    if !e_b.is_finite() {
+        return Some(Critical::BlowUp {
+            below: dt_a,
+            above: dt_b,
+        });
+    }
+    if e_a == 0.0 {
+        // The log-log line from an error of exactly zero rises vertically at dt_b.
+        return Some(Critical::At { dt: dt_b });
+    }
+    let t = (threshold.ln() - e_a.ln()) / (e_b.ln() - e_a.ln());
+    Some(Critical::At {
+        dt: (dt_a.ln() + t * (dt_b.ln() - dt_a.ln())).exp(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    #[test]
+    fn power_laws_are_interpolated_exactly() {
+        // e = 10 dt^2 crosses 0.1 at dt = 0.1; grid points bracket it.
+        let curve: Vec<_> = [0.05, 0.08, 0.12, 0.2]
+            .iter()
+            .map(|&dt| (dt, 10.0 * dt * dt))
+            .collect();
+        let c = critical_dt(&curve, 0.1).unwrap();
+        assert_relative_eq!(c.dt().unwrap(), 0.1, max_relative = 1e-12);
+    }
+
+    #[test]
+    fn the_first_crossing_counts_and_sign_changes_do_not_matter() {
+        // |error| of a curve that goes 5 %, 12 %, 3 % (sign change), 20 %.
+        let curve = [(0.05, 0.05), (0.1, 0.12), (0.15, 0.03), (0.2, 0.2)];
+        let dt = critical_dt(&curve, 0.1).unwrap().dt().unwrap();
+        assert!(dt > 0.05 && dt < 0.1, "{dt}");
+    }
+
+    #[test]
+    fn a_threshold_hit_exactly_is_that_point() {
+        let curve = [(0.05, 0.05), (0.1, 0.1), (0.2, 0.3)];
+        assert_eq!(critical_dt(&curve, 0.1), Some(Critical::At { dt: 0.1 }));
+        let first = [(0.05, 0.1), (0.1, 0.3)];
+        assert_eq!(critical_dt(&first, 0.1), Some(Critical::At { dt: 0.05 }));
+    }
+
+    #[test]
+    fn never_extrapolated() {
+        let low = [(0.05, 0.01), (0.1, 0.05)];
+        assert_eq!(
+            critical_dt(&low, 0.1),
+            Some(Critical::NotReached { dt_max: 0.1 })
+        );
+        let high = [(0.05, 0.2), (0.1, 0.5)];
+        assert_eq!(
+            critical_dt(&high, 0.1),
+            Some(Critical::BelowRange { dt_min: 0.05 })
+        );
+        assert_eq!(critical_dt(&[], 0.1), None);
+    }
+
+    #[test]
+    fn unstable_points_bracket_without_interpolation() {
+        let curve = [(0.05, 0.01), (0.1, 0.05), (0.2, f64::INFINITY)];
+        assert_eq!(
+            critical_dt(&curve, 0.1),
+            Some(Critical::BlowUp {
+                below: 0.1,
+                above: 0.2
+            })
+        );
+        let nan = [(0.05, 0.01), (0.1, f64::NAN)];
+        assert!(matches!(
+            critical_dt(&nan, 0.1),
+            Some(Critical::BlowUp { .. })
+        ));
+    }
+
+    #[test]
+    fn a_zero_error_below_rises_at_the_next_point() {
+        let curve = [(0.05, 0.0), (0.1, 0.5)];
+        assert_eq!(critical_dt(&curve, 0.1), Some(Critical::At { dt: 0.1 }));
+    }
+}

@@ -1,0 +1,210 @@
+//! SVG plots of a sweep: relative errors against dt on log-log axes with a second-order guide
+//! line, and radial distribution functions overlaid per dt.
+
+use super::aggregate::Aggregate;
+use super::runner::RunResult;
+use super::sweep::{SweepResults, THRESHOLDS};
+use plotters::prelude::*;
+use std::path::{Path, PathBuf};
+
+type Error = Box<dyn std::error::Error>;
+
+const COLOURS: [RGBColor; 6] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(148, 103, 189),
+    RGBColor(255, 127, 14),
+    RGBColor(23, 190, 207),
+];
+
+/// A relative error of a row.
+type Column = fn(&Aggregate) -> Option<f64>;
+
+/// The error panels: title and relative error of a row (plotted as its absolute value).
+const PANELS: [(&str, Column); 4] = [
+    ("|T_C error|", |r| r.configurational_temperature_error),
+    ("|T_K error|", |r| r.kinetic_temperature_error),
+    ("|U error| vs baseline", |r| r.potential_energy_error),
+    ("|P error| vs baseline", |r| r.pressure_error),
+];
+
+/// Write `errors.svg` (four error panels) and one `rdf-<scheme>.svg` per scheme with RDF data
+/// into `dir`; returns the files written.
+pub fn write_plots(results: &SweepResults, dir: &Path) -> Result<Vec<PathBuf>, Error> {
+    let mut written = vec![dir.join("errors.svg")];
+    errors(results, &written[0])?;
+    let schemes = results.summary.iter().map(|s| s.scheme.as_str());
+    for scheme in schemes {
+        let path = dir.join(format!("rdf-{}.svg", file_name(scheme)));
+        if rdf(results, scheme, &path)? {
+            written.push(path);
+        }
+    }
+    Ok(written)
+}
+
+/// A scheme string made safe for a file name.
+fn file_name(scheme: &str) -> String {
+    scheme
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
+
+fn errors(results: &SweepResults, path: &Path) -> Result<(), Error> {
+    let root = SVGBackend::new(path, (1200, 900)).into_drawing_area();
+    root.fill(&WHITE)?;
+    for (area, (title, f)) in root.split_evenly((2, 2)).iter().zip(PANELS) {
+        error_panel(area, results, title, f)?;
+    }
+    root.present()?;
+    Ok(())
+}
+
+fn error_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    results: &SweepResults,
+    title: &str,
+    f: Column,
+) -> Result<(), Error>
+where
+    DB::ErrorType: 'static,
+{
+    let series: Vec<(&str, Vec<(f64, f64)>)> = results
+        .summary
+        .iter()
+        .map(|s| {
+            let pts = results
+                .rows
+                .iter()
+                .filter(|r| r.scheme == s.scheme && r.stable)
+                .filter_map(|r| Some((r.dt, f(r)?.abs())))
+                .filter(|&(_, e)| e > 0.0 && e.is_finite())
+                .collect();
+            (s.scheme.as_str(), pts)
+        })
+        .collect();
+    let w = super::sweep::spec(&results.scene);
+    let (x0, x1) = (w.dt_min / 1.1, w.dt_max * 1.1);
+    let all = series.iter().flat_map(|(_, p)| p.iter().map(|&(_, e)| e));
+    let (lo, hi) = all.fold((0.005f64, 0.2f64), |(lo, hi), e| (lo.min(e), hi.max(e)));
+    let (y0, y1) = (lo / 2.0, (hi * 2.0).min(1e3));
+    let mut chart = ChartBuilder::on(area)
+        .caption(title, ("sans-serif", 20))
+        .margin(10)
+        .x_label_area_size(40)
+        .y_label_area_size(60)
+        .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
+    chart
+        .configure_mesh()
+        .x_desc("dt")
+        .y_desc("relative error")
+        .draw()?;
+    // Second-order guide through 10 % at the geometric middle of the dt range.
+    let mid = (x0 * x1).sqrt();
+    let guide = |dt: f64| 0.1 * (dt / mid).powi(2);
+    chart
+        .draw_series(LineSeries::new(
+            [x0, x1].map(|dt| (dt, guide(dt).clamp(y0, y1))),
+            BLACK.mix(0.4).stroke_width(1),
+        ))?
+        .label("dt^2 guide")
+        .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], BLACK.mix(0.4)));
+    for t in THRESHOLDS.iter().filter(|&&t| t > y0 && t < y1) {
+        chart.draw_series(LineSeries::new(
+            [(x0, *t), (x1, *t)],
+            BLACK.mix(0.2).stroke_width(1),
+        ))?;
+    }
+    for (k, (name, pts)) in series.iter().enumerate() {
+        let colour = COLOURS[k % COLOURS.len()];
+        chart
+            .draw_series(LineSeries::new(pts.iter().copied(), colour.stroke_width(2)))?
+            .label(*name)
+            .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], colour));
+        chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, colour.filled())))?;
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::UpperLeft)
+        .draw()?;
+    Ok(())
+}
+
+/// g(r) of `scheme`, averaged over seeds, one curve per dt; false when no point has an RDF.
+fn rdf(results: &SweepResults, scheme: &str, path: &Path) -> Result<bool, Error> {
+    let curves: Vec<(f64, Vec<(f64, f64)>)> = results
+        .rows
+        .iter()
+        .filter(|r| r.scheme == scheme)
+        .filter_map(|r| {
+            let runs: Vec<&RunResult> = results
+                .points
+                .iter()
+                .filter(|p| p.scheme == scheme && (p.dt - r.dt).abs() <= 1e-9 * r.dt)
+                .collect();
+            Some((r.dt, mean_rdf(&runs)?))
+        })
+        .collect();
+    let Some(r_max) = curves
+        .iter()
+        .flat_map(|c| c.1.last())
+        .map(|p| p.0)
+        .reduce(f64::max)
+    else {
+        return Ok(false);
+    };
+    let g_max = curves
+        .iter()
+        .flat_map(|c| c.1.iter().map(|p| p.1))
+        .fold(1.5f64, f64::max);
+    let root = SVGBackend::new(path, (900, 600)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(format!("g(r), {scheme}"), ("sans-serif", 20))
+        .margin(10)
+        .x_label_area_size(40)
+        .y_label_area_size(50)
+        .build_cartesian_2d(0.0..r_max, 0.0..g_max * 1.05)?;
+    chart.configure_mesh().x_desc("r").y_desc("g(r)").draw()?;
+    let n = curves.len().max(2) as f64 - 1.0;
+    for (k, (dt, g)) in curves.iter().enumerate() {
+        // From blue (smallest dt) to red (largest).
+        let t = k as f64 / n;
+        let colour = RGBColor((255.0 * t) as u8, 60, (255.0 * (1.0 - t)) as u8);
+        chart
+            .draw_series(LineSeries::new(g.iter().copied(), colour.stroke_width(2)))?
+            .label(format!("dt = {dt:.4}"))
+            .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], colour));
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::LowerRight)
+        .draw()?;
+    root.present()?;
+    Ok(true)
+}
+
+/// Bin-wise mean of the runs' RDFs (those that have one with the same bins).
+fn mean_rdf(runs: &[&RunResult]) -> Option<Vec<(f64, f64)>> {
+    let rdfs: Vec<&Vec<[f64; 2]>> = runs.iter().filter_map(|r| r.rdf.as_ref()).collect();
+    let first = rdfs.first()?;
+    let same: Vec<_> = rdfs.iter().filter(|g| g.len() == first.len()).collect();
+    let n = same.len() as f64;
+    Some(
+        (0..first.len())
+            .map(|b| (first[b][0], same.iter().map(|g| g[b][1]).sum::<f64>() / n))
+            .collect(),
+    )
+}

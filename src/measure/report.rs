@@ -1,0 +1,150 @@
+//! Terminal tables and CSV of sweep rows and scheme summaries.
+
+use super::aggregate::Aggregate;
+use super::critical::Critical;
+use super::sweep::SchemeSummary;
+
+type Cell<T> = fn(&T) -> Option<f64>;
+
+/// The numeric columns of a sweep row: header, value, decimals shown in tables
+/// (percentages are relative errors times 100).
+const ROW_COLUMNS: [(&str, Cell<Aggregate>, usize); 11] = [
+    ("dt", |r| Some(r.dt), 4),
+    ("T_K", |r| r.kinetic_temperature, 4),
+    ("T_K err %", |r| percent(r.kinetic_temperature_error), 2),
+    ("T_C", |r| r.configurational_temperature, 4),
+    ("+-", |r| r.configurational_temperature_stderr, 4),
+    (
+        "T_C err %",
+        |r| percent(r.configurational_temperature_error),
+        2,
+    ),
+    ("U", |r| r.potential_energy, 4),
+    ("U err %", |r| percent(r.potential_energy_error), 2),
+    ("P", |r| r.pressure, 3),
+    ("P err %", |r| percent(r.pressure_error), 2),
+    ("ms/step", |r| r.ms_per_step, 4),
+];
+
+fn percent(x: Option<f64>) -> Option<f64> {
+    x.map(|x| 100.0 * x)
+}
+
+fn number(x: Option<f64>, decimals: usize) -> String {
+    x.map_or_else(|| "-".into(), |x| format!("{x:.decimals$}"))
+}
+
+/// Columns aligned right, first column left, separated by two spaces.
+fn align(header: Vec<String>, body: Vec<Vec<String>>) -> String {
+    let width: Vec<usize> = (0..header.len())
+        .map(|c| {
+            body.iter()
+                .chain([&header])
+                .map(|r| r[c].chars().count())
+                .max()
+                .unwrap_or(0)
+        })
+        .collect();
+    let line = |r: &Vec<String>| {
+        let cells: Vec<String> = r
+            .iter()
+            .zip(&width)
+            .enumerate()
+            .map(|(c, (s, &w))| {
+                if c == 0 {
+                    format!("{s:<w$}")
+                } else {
+                    format!("{s:>w$}")
+                }
+            })
+            .collect();
+        cells.join("  ").trim_end().to_string() + "\n"
+    };
+    std::iter::once(&header).chain(&body).map(line).collect()
+}
+
+/// One line per (scheme, dt): observables, relative errors, cost and stability.
+pub fn rows_table(rows: &[Aggregate]) -> String {
+    let mut header = vec!["scheme".to_string()];
+    header.extend(ROW_COLUMNS.iter().map(|c| c.0.to_string()));
+    header.push("stable".into());
+    let body = rows
+        .iter()
+        .map(|r| {
+            let mut line = vec![r.scheme.clone()];
+            line.extend(ROW_COLUMNS.iter().map(|(_, f, d)| number(f(r), *d)));
+            line.push(format!("{}/{}", r.stable_runs, r.runs));
+            line
+        })
+        .collect();
+    align(header, body)
+}
+
+/// The rows as CSV (full precision, empty where nothing was measured).
+pub fn rows_csv(rows: &[Aggregate]) -> String {
+    let mut out = String::from("scheme");
+    for (name, _, _) in ROW_COLUMNS {
+        out += &format!(",{name}");
+    }
+    out += ",stable_runs,runs\n";
+    for r in rows {
+        out += &r.scheme;
+        for (_, f, _) in ROW_COLUMNS {
+            out += &format!(",{}", f(r).map_or_else(String::new, |x| x.to_string()));
+        }
+        out += &format!(",{},{}\n", r.stable_runs, r.runs);
+    }
+    out
+}
+
+fn critical(c: &Option<Critical>) -> String {
+    c.map_or_else(|| "-".into(), |c| c.to_string())
+}
+
+/// One line per scheme: critical dt at 10 % and 1 % T_C error, stability, cost, efficiency.
+pub fn summary_table(summary: &[SchemeSummary], reference: &str) -> String {
+    let header = [
+        "scheme",
+        "dt_c 10 %",
+        "dt_c 1 %",
+        "stable to",
+        "blow-up at",
+        "ms/step",
+        "forces/step",
+        &format!("efficiency (vs {reference})"),
+    ]
+    .map(String::from)
+    .to_vec();
+    let body = summary
+        .iter()
+        .map(|s| {
+            vec![
+                s.scheme.clone(),
+                critical(&s.critical_10),
+                critical(&s.critical_1),
+                number(s.stability_dt, 4),
+                number(s.first_blow_up_dt, 4),
+                number(s.ms_per_step, 4),
+                number(s.force_evaluations_per_step, 2),
+                number(s.efficiency, 2),
+            ]
+        })
+        .collect();
+    align(header, body)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tables_align_and_csv_keeps_empty_cells() {
+        let t = align(
+            vec!["a".into(), "bb".into()],
+            vec![vec!["xyz".into(), "1".into()]],
+        );
+        assert_eq!(t, "a    bb\nxyz   1\n");
+        assert_eq!(number(None, 2), "-");
+        assert_eq!(number(Some(0.12345), 2), "0.12");
+    }
+}

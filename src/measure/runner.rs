@@ -1,0 +1,304 @@
+//! One run: a scene's system advanced with one scheme at one time step, observables sampled at
+//! the end of full steps, integration timed on its own.
+
+use super::scene::Scene;
+use dpd_core::observe::{thermo, Rdf, ThermoAverages, Vacf};
+use dpd_core::{ParamError, Scheme};
+use serde::{Deserialize, Serialize};
+use std::collections::HashMap;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
+
+/// What one run is: a scheme (registry name or scheme string), a time step and a seed.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Job {
+    pub scheme: String,
+    pub dt: f64,
+    pub seed: u64,
+}
+
+impl Job {
+    /// Same scheme and seed, and dt equal to a relative 1e-9 (grids are recomputed).
+    pub fn matches(&self, other: &Job) -> bool {
+        self.scheme == other.scheme
+            && self.seed == other.seed
+            && (self.dt - other.dt).abs() <= 1e-9 * self.dt.abs().max(other.dt.abs())
+    }
+}
+
+/// The outcome of one run. Observables are `None` when no sample was taken (a run that blew
+/// up or was stopped before the averaging window).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RunResult {
+    pub scheme: String,
+    pub dt: f64,
+    pub seed: u64,
+    /// Steps asked for.
+    pub steps: u64,
+    /// Steps done without blow-up.
+    pub completed_steps: u64,
+    /// False when the run blew up; `error` then says where and why.
+    pub stable: bool,
+    pub error: Option<String>,
+    /// Stopped by the user before the end; the observables cover the samples taken so far.
+    pub interrupted: bool,
+    /// Samples in the averages.
+    pub samples: u64,
+    /// k_B T_K.
+    pub kinetic_temperature: Option<f64>,
+    /// k_B T_C, the ratio of the averaged numerator and denominator.
+    pub configurational_temperature: Option<f64>,
+    /// Potential energy per particle.
+    pub potential_energy: Option<f64>,
+    /// Virial pressure.
+    pub pressure: Option<f64>,
+    /// Wall-clock milliseconds per step of the integration alone (no sampling).
+    pub ms_per_step: Option<f64>,
+    /// Force evaluations per step, counted during the integration.
+    pub force_evaluations_per_step: Option<f64>,
+    /// Pair-distance evaluations per step, counted during the integration.
+    pub pair_distance_evaluations_per_step: Option<f64>,
+    /// `[r, g(r)]` per bin, with `[rdf]` in the scene.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rdf: Option<Vec<[f64; 2]>>,
+    /// Diffusion coefficient from the velocity autocorrelation, with `[vacf]` in the scene.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub diffusion: Option<f64>,
+}
+
+impl RunResult {
+    pub fn job(&self) -> Job {
+        Job {
+            scheme: self.scheme.clone(),
+            dt: self.dt,
+            seed: self.seed,
+        }
+    }
+}
+
+/// How a caller watches and stops runs: `stop` is checked between chunks of steps, `progress`
+/// receives the number of steps just completed.
+#[derive(Clone, Copy)]
+pub struct Control<'a> {
+    pub stop: &'a AtomicBool,
+    pub progress: &'a (dyn Fn(u64) + Sync),
+}
+
+/// Run `job` on `scene`'s system, stepping with `scheme` (what `job.scheme` names). A blow-up
+/// is a result with `stable = false`; only invalid input is an error.
+pub fn run(
+    scene: &Scene,
+    job: &Job,
+    scheme: &(dyn Scheme + Sync),
+    control: Control,
+) -> Result<RunResult, ParamError> {
+    let (dt, seed) = (job.dt, job.seed);
+    let mut sys = scene.system(dt, seed)?;
+    let steps = scene.steps(dt);
+    let every = scene.sample_every(dt);
+    let mut thermo_avg = ThermoAverages::new(steps, scene.average_fraction)?;
+    let mut rdf = match &scene.rdf {
+        Some(r) => Some(Rdf::new(&sys, r.r_max, r.bins)?),
+        None => None,
+    };
+    let interval = every as f64 * dt;
+    let mut vacf = match &scene.vacf {
+        Some(v) => Some(Vacf::new(
+            ((v.max_lag / interval).round() as usize).max(1),
+            v.origin_every,
+        )?),
+        None => None,
+    };
+    let (mut elapsed, mut forces, mut geometry) = (Duration::ZERO, 0, 0);
+    let (mut error, mut interrupted) = (None, false);
+    while sys.step() < steps {
+        if control.stop.load(Ordering::Relaxed) {
+            interrupted = true;
+            break;
+        }
+        let chunk = every.min(steps - sys.step());
+        let (before, from) = (sys.counters(), sys.step());
+        let start = Instant::now();
+        let outcome = sys.advance(scheme, chunk);
+        elapsed += start.elapsed();
+        let after = sys.counters();
+        forces += after.force_evaluations - before.force_evaluations;
+        geometry += after.pair_distance_evaluations - before.pair_distance_evaluations;
+        (control.progress)(sys.step() - from);
+        if let Err(blow_up) = outcome {
+            error = Some(blow_up.to_string());
+            break;
+        }
+        if thermo_avg.wants(sys.step()) {
+            thermo_avg.record(&thermo(&mut sys));
+            rdf.iter_mut().for_each(|r| r.record(&sys));
+            vacf.iter_mut().for_each(|v| v.record(&sys));
+        }
+    }
+    let done = sys.step();
+    let per_step = |x: f64| (done > 0).then(|| x / done as f64);
+    let s = thermo_avg.summary();
+    let stable = error.is_none();
+    let observed = |x: f64| (stable && s.samples > 0 && x.is_finite()).then_some(x);
+    Ok(RunResult {
+        scheme: job.scheme.clone(),
+        dt,
+        seed,
+        steps,
+        completed_steps: done,
+        stable,
+        error,
+        interrupted,
+        samples: s.samples,
+        kinetic_temperature: observed(s.kinetic_temperature),
+        configurational_temperature: observed(s.configurational_temperature),
+        potential_energy: observed(s.potential_energy),
+        pressure: observed(s.pressure),
+        ms_per_step: per_step(elapsed.as_secs_f64() * 1e3),
+        force_evaluations_per_step: per_step(forces as f64),
+        pair_distance_evaluations_per_step: per_step(geometry as f64),
+        rdf: rdf
+            .filter(|r| stable && r.samples() > 0)
+            .map(|r| r.g().into_iter().map(|(r, g)| [r, g]).collect()),
+        diffusion: vacf
+            .filter(|_| stable && s.samples > 0)
+            .map(|v| v.diffusion(interval))
+            .filter(|d| d.is_finite()),
+    })
+}
+
+/// Run `f` on a pool of `threads` rayon threads (0: one per core), which the core's pair loops
+/// then use.
+pub fn on_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> Result<T, ParamError> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| ParamError::new("threads", threads, e.to_string()))?;
+    Ok(pool.install(f))
+}
+
+/// Run `jobs` with the schemes of `schemes` (by `job.scheme`), in order of the list, on
+/// `scene.threads` workers: independent jobs in parallel, each single-threaded, or a single
+/// job on all workers. Every result, also of interrupted runs, goes to `on_result`; the first
+/// invalid input stops the others and is returned.
+pub fn run_parallel(
+    scene: &Scene,
+    jobs: &[Job],
+    schemes: &HashMap<String, Box<dyn Scheme + Send + Sync>>,
+    control: Control,
+    on_result: &(dyn Fn(RunResult) + Sync),
+) -> Result<(), ParamError> {
+    let inner = if jobs.len() == 1 { scene.threads } else { 1 };
+    let first_error = Mutex::new(None);
+    on_threads(scene.threads, || {
+        rayon::scope_fifo(|s| {
+            for job in jobs {
+                let first_error = &first_error;
+                s.spawn_fifo(move |_| {
+                    if control.stop.load(Ordering::Relaxed) {
+                        return;
+                    }
+                    let scheme = &schemes[&job.scheme];
+                    match on_threads(inner, || run(scene, job, scheme, control)).and_then(|r| r) {
+                        Ok(r) => on_result(r),
+                        Err(e) => {
+                            control.stop.store(true, Ordering::Relaxed);
+                            lock(first_error).get_or_insert(e);
+                        }
+                    }
+                });
+            }
+        })
+    })?;
+    match first_error.into_inner().unwrap_or_else(|e| e.into_inner()) {
+        Some(e) => Err(e),
+        None => Ok(()),
+    }
+}
+
+/// Lock `m`, also after a panic elsewhere (the data stay usable).
+pub fn lock<T>(m: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::measure::scene::RdfSpec;
+    use dpd_schemes::registry::resolve;
+
+    fn tiny() -> Scene {
+        Scene {
+            n: 100,
+            time: 2.0,
+            average_fraction: 0.5,
+            rdf: Some(RdfSpec {
+                r_max: 1.5,
+                bins: 30,
+            }),
+            ..Default::default()
+        }
+    }
+
+    fn job(scheme: &str, dt: f64, seed: u64) -> Job {
+        Job {
+            scheme: scheme.into(),
+            dt,
+            seed,
+        }
+    }
+
+    fn quiet(stop: &AtomicBool) -> Control<'_> {
+        Control {
+            stop,
+            progress: &|_| {},
+        }
+    }
+
+    #[test]
+    fn a_run_samples_the_window_and_counts_evaluations() {
+        let scene = tiny();
+        let scheme = resolve("aboba").unwrap();
+        let r = run(
+            &scene,
+            &job("aboba", 0.02, 3),
+            &scheme,
+            quiet(&AtomicBool::new(false)),
+        )
+        .unwrap();
+        assert!(r.stable && !r.interrupted);
+        assert_eq!((r.steps, r.completed_steps), (100, 100));
+        // Samples every 5 steps in the last 50 steps: steps 50, 55, ..., 100.
+        assert_eq!(r.samples, 11);
+        assert_eq!(r.force_evaluations_per_step, Some(1.0));
+        assert!(r.kinetic_temperature.unwrap() > 0.5 && r.rdf.unwrap().len() == 30);
+    }
+
+    #[test]
+    fn a_blow_up_is_a_result() {
+        let scheme = resolve("vv").unwrap();
+        let r = run(
+            &tiny(),
+            &job("vv", 2.0, 1),
+            &scheme,
+            quiet(&AtomicBool::new(false)),
+        )
+        .unwrap();
+        assert!(!r.stable && r.error.as_deref().unwrap().contains("blow-up"));
+        assert_eq!(r.configurational_temperature, None);
+    }
+
+    #[test]
+    fn a_stopped_run_is_marked_interrupted() {
+        let scheme = resolve("aboba").unwrap();
+        let r = run(
+            &tiny(),
+            &job("aboba", 0.02, 1),
+            &scheme,
+            quiet(&AtomicBool::new(true)),
+        )
+        .unwrap();
+        assert!(r.interrupted && r.completed_steps == 0 && r.samples == 0);
+    }
+}

@@ -1,0 +1,503 @@
+//! Scenes: what to simulate and how long, read from TOML, overridden from the command line and
+//! validated with messages that name the key.
+//!
+//! A scene names only what it needs; every key has the default of the standard equilibrium box
+//! of algorithms.md section 8 (N = 500, density 3, a = 25, gamma = 4.5, k_B T = 1, m = 1,
+//! s = 2, 1000 time units averaged over the last 80 %). The optional tables `[rdf]`, `[vacf]`
+//! and `[sweep]` switch on what they describe; a scene without them does not pay for them.
+
+use dpd_core::init::{cubic_box, maxwell_momenta, uniform_positions};
+use dpd_core::system::DEFAULT_SKIN;
+use dpd_core::{ParamError, Params, System};
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+use thiserror::Error;
+
+/// One simulation set-up. Lengths in units of r_c = 1, times in reduced time units.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Scene {
+    /// Free text shown in the header.
+    pub description: String,
+    /// Registry name or scheme string, for `dpd run`.
+    pub scheme: String,
+    /// Number of particles in the cubic periodic box.
+    pub n: usize,
+    /// Number density.
+    pub density: f64,
+    /// Conservative repulsion a.
+    pub a: f64,
+    /// Dissipation strength gamma; sigma = sqrt(2 gamma k_B T).
+    pub gamma: f64,
+    /// Target temperature k_B T.
+    pub kbt: f64,
+    /// Mass of every particle.
+    pub mass: f64,
+    /// Weight exponent s: w_D = (1 - r)^s, w_R = (1 - r)^(s/2).
+    pub weight_exponent: f64,
+    /// Time step of `dpd run`.
+    pub dt: f64,
+    /// Length of each run in time units; steps = round(time / dt).
+    pub time: f64,
+    /// Observables are averaged over this last fraction of each run; the rest equilibrates.
+    pub average_fraction: f64,
+    /// Time between samples; a sample is taken every max(1, round(sample_interval / dt))
+    /// steps, at the end of a full step.
+    pub sample_interval: f64,
+    /// Seed of the first run; run k uses seed + k.
+    pub seed: u64,
+    /// Independent runs (seeds) per scheme and dt.
+    pub runs: u64,
+    /// Worker threads for independent runs; 0 means one per core.
+    pub threads: usize,
+    pub rdf: Option<RdfSpec>,
+    pub vacf: Option<VacfSpec>,
+    pub sweep: Option<SweepSpec>,
+}
+
+/// Radial distribution function accumulated over the averaging window.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RdfSpec {
+    /// Histogram range; at most half the box edge.
+    pub r_max: f64,
+    pub bins: usize,
+}
+
+/// Velocity autocorrelation over the averaging window, reported as the diffusion coefficient.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct VacfSpec {
+    /// Longest correlation time, in time units.
+    pub max_lag: f64,
+    /// A new time origin every this many samples.
+    pub origin_every: u64,
+}
+
+/// A sweep of schemes over a geometric grid of time steps (algorithms.md section 7).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SweepSpec {
+    pub schemes: Vec<String>,
+    pub dt_min: f64,
+    pub dt_max: f64,
+    /// Ratio of neighbouring grid points; dt_k = dt_min dt_factor^k <= dt_max.
+    pub dt_factor: f64,
+    /// Efficiencies are scaled so that this scheme's is 1.
+    pub reference: String,
+    /// Scheme of the small-dt run that the potential energy and pressure are compared with.
+    pub baseline_scheme: String,
+    /// Time step of that run (default: dt_min).
+    pub baseline_dt: Option<f64>,
+}
+
+impl Default for Scene {
+    fn default() -> Self {
+        Scene {
+            description: String::new(),
+            scheme: "aboba".into(),
+            n: 500,
+            density: 3.0,
+            a: 25.0,
+            gamma: 4.5,
+            kbt: 1.0,
+            mass: 1.0,
+            weight_exponent: 2.0,
+            dt: 0.05,
+            time: 1000.0,
+            average_fraction: 0.8,
+            sample_interval: 0.1,
+            seed: 1,
+            runs: 1,
+            threads: 0,
+            rdf: None,
+            vacf: None,
+            sweep: None,
+        }
+    }
+}
+
+impl Default for RdfSpec {
+    fn default() -> Self {
+        RdfSpec {
+            r_max: 2.5,
+            bins: 50,
+        }
+    }
+}
+
+impl Default for VacfSpec {
+    fn default() -> Self {
+        VacfSpec {
+            max_lag: 5.0,
+            origin_every: 10,
+        }
+    }
+}
+
+impl Default for SweepSpec {
+    fn default() -> Self {
+        SweepSpec {
+            schemes: vec!["vv".into(), "dpd-s1".into(), "aboba".into()],
+            dt_min: 0.01,
+            dt_max: 0.2,
+            dt_factor: 1.15,
+            reference: "vv".into(),
+            baseline_scheme: "aboba".into(),
+            baseline_dt: None,
+        }
+    }
+}
+
+/// A scene that cannot be read or is not valid.
+#[derive(Debug, Error)]
+pub enum SceneError {
+    #[error("scene {path}: {source}")]
+    Io {
+        path: String,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("scene {path}: {message}")]
+    Toml { path: String, message: String },
+    #[error("scene: {0}")]
+    Invalid(#[from] ParamError),
+}
+
+/// Command-line overrides of scene keys; each flag replaces the key of the same name.
+#[derive(Clone, Debug, Default, clap::Args)]
+pub struct Overrides {
+    /// Scene file (TOML); default: the standard gamma = 4.5 box
+    #[arg(long, value_name = "FILE")]
+    pub scene: Option<PathBuf>,
+    /// Registry name or scheme string
+    #[arg(long)]
+    pub scheme: Option<String>,
+    #[arg(long)]
+    pub gamma: Option<f64>,
+    /// Time step
+    #[arg(long)]
+    pub dt: Option<f64>,
+    /// Run length in time units
+    #[arg(long)]
+    pub time: Option<f64>,
+    /// Number of particles
+    #[arg(long)]
+    pub n: Option<usize>,
+    #[arg(long)]
+    pub density: Option<f64>,
+    /// Conservative repulsion
+    #[arg(long)]
+    pub a: Option<f64>,
+    /// Target temperature k_B T
+    #[arg(long)]
+    pub kbt: Option<f64>,
+    #[arg(long)]
+    pub mass: Option<f64>,
+    #[arg(long)]
+    pub weight_exponent: Option<f64>,
+    /// Seed of the first run
+    #[arg(long)]
+    pub seed: Option<u64>,
+    /// Independent runs (seeds)
+    #[arg(long)]
+    pub runs: Option<u64>,
+    /// Worker threads (0: one per core)
+    #[arg(long)]
+    pub threads: Option<usize>,
+}
+
+impl Scene {
+    /// Parse TOML text; `path` names the source in messages.
+    pub fn from_toml(text: &str, path: &str) -> Result<Scene, SceneError> {
+        toml::from_str(text).map_err(|e| SceneError::Toml {
+            path: path.into(),
+            message: e.to_string(),
+        })
+    }
+
+    /// Read a scene file.
+    pub fn load(path: &Path) -> Result<Scene, SceneError> {
+        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+            path: path.display().to_string(),
+            source,
+        })?;
+        Scene::from_toml(&text, &path.display().to_string())
+    }
+
+    /// The scene file of `o` (or the default scene) with `o`'s flags applied, validated.
+    pub fn resolve(o: &Overrides) -> Result<Scene, SceneError> {
+        let mut s = match &o.scene {
+            Some(path) => Scene::load(path)?,
+            None => Scene::default(),
+        };
+        macro_rules! set {
+            ($($key:ident),*) => { $(if let Some(v) = &o.$key { s.$key = v.clone(); })* };
+        }
+        set!(
+            scheme,
+            gamma,
+            dt,
+            time,
+            n,
+            density,
+            a,
+            kbt,
+            mass,
+            weight_exponent,
+            seed,
+            runs,
+            threads
+        );
+        s.validate()?;
+        Ok(s)
+    }
+
+    /// Check every key; the first invalid one is reported by name.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        for (key, v) in [
+            ("density", self.density),
+            ("kbt", self.kbt),
+            ("mass", self.mass),
+            ("weight_exponent", self.weight_exponent),
+            ("dt", self.dt),
+            ("time", self.time),
+            ("sample_interval", self.sample_interval),
+        ] {
+            positive(key, v)?;
+        }
+        for (key, v) in [("a", self.a), ("gamma", self.gamma)] {
+            require(key, v, v.is_finite() && v >= 0.0, "must be finite and >= 0")?;
+        }
+        let f = self.average_fraction;
+        require(
+            "average_fraction",
+            f,
+            f > 0.0 && f <= 1.0,
+            "must be in (0, 1]",
+        )?;
+        require("runs", self.runs, self.runs >= 1, "must be at least 1")?;
+        let edge = (self.n as f64 / self.density).cbrt();
+        let min_edge = 2.0 * (1.0 + DEFAULT_SKIN);
+        require(
+            "n",
+            self.n,
+            self.n >= 2 && edge >= min_edge,
+            &format!(
+                "must be at least 2 and fill a cube of edge >= {min_edge} at density {} \
+                 (n >= {:.0})",
+                self.density,
+                (min_edge.powi(3) * self.density).ceil()
+            ),
+        )?;
+        if let Some(r) = &self.rdf {
+            let half = 0.5 * edge;
+            require(
+                "rdf.r_max",
+                r.r_max,
+                r.r_max > 0.0 && r.r_max <= half,
+                &format!("must be in (0, {half:.4}] (half the box edge)"),
+            )?;
+            require("rdf.bins", r.bins, r.bins >= 1, "must be at least 1")?;
+        }
+        if let Some(v) = &self.vacf {
+            positive("vacf.max_lag", v.max_lag)?;
+            require(
+                "vacf.origin_every",
+                v.origin_every,
+                v.origin_every >= 1,
+                "must be at least 1",
+            )?;
+        }
+        if let Some(w) = &self.sweep {
+            w.validate()?;
+        }
+        Ok(())
+    }
+
+    /// Steps of a run at `dt` (at least 1).
+    pub fn steps(&self, dt: f64) -> u64 {
+        ((self.time / dt).round() as u64).max(1)
+    }
+
+    /// Steps between samples at `dt` (at least 1).
+    pub fn sample_every(&self, dt: f64) -> u64 {
+        ((self.sample_interval / dt).round() as u64).max(1)
+    }
+
+    /// The pair-force parameters.
+    pub fn params(&self) -> Result<Params, ParamError> {
+        Params::builder()
+            .a(self.a)
+            .gamma(self.gamma)
+            .kbt(self.kbt)
+            .weight_exponent(self.weight_exponent)
+            .build()
+    }
+
+    /// The initial state of run `seed` at time step `dt`: uniform positions, Maxwell momenta
+    /// with the total momentum removed.
+    pub fn system(&self, dt: f64, seed: u64) -> Result<System, ParamError> {
+        let bx = cubic_box(self.n, self.density)?;
+        let masses = vec![self.mass; self.n];
+        let q = uniform_positions(&bx, self.n, seed);
+        let p = maxwell_momenta(&masses, self.kbt, seed);
+        System::builder(self.params()?, bx, q)
+            .momenta(p)
+            .masses(masses)
+            .dt(dt)
+            .seed(seed)
+            .build()
+    }
+
+    /// The effective parameters as TOML, for headers.
+    pub fn to_toml(&self) -> String {
+        toml::to_string(self).unwrap_or_else(|e| format!("(scene not printable: {e})"))
+    }
+}
+
+impl SweepSpec {
+    fn validate(&self) -> Result<(), ParamError> {
+        require(
+            "sweep.schemes",
+            format!("{:?}", self.schemes),
+            !self.schemes.is_empty(),
+            "must name at least one scheme",
+        )?;
+        positive("sweep.dt_min", self.dt_min)?;
+        require(
+            "sweep.dt_max",
+            self.dt_max,
+            self.dt_max.is_finite() && self.dt_max >= self.dt_min,
+            &format!("must be finite and >= sweep.dt_min = {}", self.dt_min),
+        )?;
+        let f = self.dt_factor;
+        require(
+            "sweep.dt_factor",
+            f,
+            f.is_finite() && f > 1.0,
+            "must be finite and > 1",
+        )?;
+        let points = (self.dt_max / self.dt_min).ln() / f.ln();
+        require(
+            "sweep.dt_factor",
+            f,
+            points < 1000.0,
+            "gives more than 1000 grid points",
+        )?;
+        require(
+            "sweep.reference",
+            &self.reference,
+            self.schemes.contains(&self.reference),
+            &format!("must be one of sweep.schemes {:?}", self.schemes),
+        )?;
+        if let Some(dt) = self.baseline_dt {
+            positive("sweep.baseline_dt", dt)?;
+        }
+        Ok(())
+    }
+
+    /// The time steps dt_min dt_factor^k up to dt_max (within a relative 1e-9).
+    pub fn grid(&self) -> Vec<f64> {
+        (0..)
+            .map(|k| self.dt_min * self.dt_factor.powi(k))
+            .take_while(|&dt| dt <= self.dt_max * (1.0 + 1e-9))
+            .collect()
+    }
+
+    /// Time step of the baseline run.
+    pub fn baseline_dt(&self) -> f64 {
+        self.baseline_dt.unwrap_or(self.dt_min)
+    }
+}
+
+fn require(key: &str, value: impl ToString, ok: bool, allowed: &str) -> Result<(), ParamError> {
+    if ok {
+        Ok(())
+    } else {
+        Err(ParamError::new(key, value, allowed))
+    }
+}
+
+fn positive(key: &str, v: f64) -> Result<(), ParamError> {
+    require(key, v, v.is_finite() && v > 0.0, "must be finite and > 0")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn error_of(text: &str) -> String {
+        match Scene::from_toml(text, "t.toml").and_then(|s| Ok(s.validate()?)) {
+            Ok(()) => panic!("{text:?} was accepted"),
+            Err(e) => e.to_string(),
+        }
+    }
+
+    #[test]
+    fn a_scene_names_only_what_it_needs() {
+        let s = Scene::from_toml("gamma = 40.5\n[rdf]\nbins = 20\n", "t").unwrap();
+        assert_eq!((s.gamma, s.n, s.rdf.unwrap().bins), (40.5, 500, 20));
+        assert!(s.vacf.is_none() && s.sweep.is_none());
+    }
+
+    #[test]
+    fn unknown_keys_and_invalid_values_name_the_key() {
+        for (text, key) in [
+            ("gama = 4.5", "gama"),
+            ("[sweep]\ndt_mni = 0.1", "dt_mni"),
+            ("gamma = -1.0", "gamma"),
+            ("gamma = \"x\"", "gamma"),
+            ("kbt = 0.0", "kbt"),
+            ("n = 10", "n"),
+            ("average_fraction = 1.5", "average_fraction"),
+            ("runs = 0", "runs"),
+            ("[rdf]\nr_max = 9.0", "rdf.r_max"),
+            ("[sweep]\ndt_factor = 1.0", "sweep.dt_factor"),
+            ("[sweep]\ndt_min = 0.1\ndt_max = 0.01", "sweep.dt_max"),
+            ("[sweep]\nreference = \"abo\"", "sweep.reference"),
+        ] {
+            let e = error_of(text);
+            assert!(e.contains(key), "{text:?}: {e}");
+        }
+    }
+
+    #[test]
+    fn overrides_replace_scene_keys() {
+        let o = Overrides {
+            gamma: Some(450.0),
+            n: Some(100),
+            ..Default::default()
+        };
+        let s = Scene::resolve(&o).unwrap();
+        assert_eq!((s.gamma, s.n, s.density), (450.0, 100, 3.0));
+        let bad = Overrides {
+            dt: Some(f64::NAN),
+            ..Default::default()
+        };
+        assert!(Scene::resolve(&bad).unwrap_err().to_string().contains("dt"));
+    }
+
+    #[test]
+    fn grid_is_geometric_and_inclusive() {
+        let w = SweepSpec {
+            dt_min: 0.01,
+            dt_max: 0.04,
+            dt_factor: 2.0,
+            ..Default::default()
+        };
+        assert_eq!(w.grid(), vec![0.01, 0.02, 0.04]);
+    }
+
+    #[test]
+    fn every_shipped_scene_is_valid() {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+        let mut count = 0;
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            Scene::load(&path).unwrap().validate().unwrap();
+            count += 1;
+        }
+        assert!(count >= 6);
+    }
+}

@@ -1,0 +1,447 @@
+//! Sweeps: every scheme of a scene's `[sweep]` table over its dt grid and seeds, run in
+//! parallel (one point per worker, each single-threaded), resumable from the results file,
+//! summarised as critical step sizes, stability thresholds and efficiencies.
+
+use super::aggregate::Aggregate;
+use super::critical::{critical_dt, Critical};
+use super::runner::{lock, run_parallel, Control, Job, RunResult};
+use super::scene::{Scene, SceneError, SweepSpec};
+use dpd_core::ParamError;
+use dpd_schemes::registry::resolve;
+use serde::{Deserialize, Serialize};
+use std::collections::HashMap;
+use std::path::Path;
+use std::sync::Mutex;
+use thiserror::Error;
+
+/// The two thresholds of the relative T_C error (algorithms.md section 7).
+pub const THRESHOLDS: [f64; 2] = [0.10, 0.01];
+
+/// Per scheme: critical step sizes, stability and efficiency.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SchemeSummary {
+    pub scheme: String,
+    /// dt at 10 % relative T_C error, where interpolated inside the grid.
+    pub critical_dt_10: Option<f64>,
+    /// dt at 1 % relative T_C error, where interpolated inside the grid.
+    pub critical_dt_1: Option<f64>,
+    /// How each was found (also when it was not: below or above the grid, or next to a
+    /// blow-up).
+    pub critical_10: Option<Critical>,
+    pub critical_1: Option<Critical>,
+    /// Largest grid dt below the first one where a run blew up (`None` if the smallest did).
+    pub stability_dt: Option<f64>,
+    /// Smallest grid dt where a run blew up (`None`: stable over the whole grid).
+    pub first_blow_up_dt: Option<f64>,
+    /// Mean integration cost over the stable points, milliseconds per step.
+    pub ms_per_step: Option<f64>,
+    pub force_evaluations_per_step: Option<f64>,
+    /// (critical_dt_10 / ms_per_step), divided by the same for the reference scheme.
+    pub efficiency: Option<f64>,
+}
+
+/// Everything a sweep produced; also the resumable results file.
+#[derive(Clone, Debug, Serialize)]
+pub struct SweepResults {
+    /// The effective scene.
+    pub scene: Scene,
+    /// Every finished run.
+    pub points: Vec<RunResult>,
+    /// Per (scheme, dt) over the seeds, in scheme order then increasing dt.
+    pub rows: Vec<Aggregate>,
+    /// The small-dt run the potential energy and pressure are compared with.
+    pub baseline: Option<Aggregate>,
+    pub summary: Vec<SchemeSummary>,
+    /// Every planned point is in `points`.
+    pub complete: bool,
+}
+
+/// The part of a results file that a resumed sweep reads back.
+#[derive(Deserialize)]
+struct Stored {
+    scene: Scene,
+    points: Vec<RunResult>,
+}
+
+/// A sweep that cannot start or cannot keep its results.
+#[derive(Debug, Error)]
+pub enum SweepError {
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+    #[error("{0}")]
+    Invalid(#[from] ParamError),
+    #[error("results file {path}: {message}")]
+    Results { path: String, message: String },
+}
+
+/// The scene's sweep table, or the default one.
+pub fn spec(scene: &Scene) -> SweepSpec {
+    scene.sweep.clone().unwrap_or_default()
+}
+
+/// Every run of the sweep: schemes x grid x seeds, then the baseline runs not already among
+/// them; the longest (smallest dt) first within each scheme.
+pub fn plan(scene: &Scene) -> Vec<Job> {
+    let w = spec(scene);
+    let seeds = scene.seed..scene.seed + scene.runs;
+    let mut jobs: Vec<Job> = Vec::new();
+    let baseline = std::iter::once((&w.baseline_scheme, w.baseline_dt()));
+    let grid = w
+        .schemes
+        .iter()
+        .flat_map(|s| w.grid().into_iter().map(move |dt| (s, dt)));
+    for (scheme, dt) in grid.chain(baseline) {
+        for seed in seeds.clone() {
+            let job = Job {
+                scheme: scheme.clone(),
+                dt,
+                seed,
+            };
+            if !jobs.iter().any(|j| j.matches(&job)) {
+                jobs.push(job);
+            }
+        }
+    }
+    jobs
+}
+
+/// The planned runs of `scene` that are not among `finished`.
+pub fn pending(scene: &Scene, finished: &[RunResult]) -> Vec<Job> {
+    plan(scene)
+        .into_iter()
+        .filter(|j| !finished.iter().any(|p| p.job().matches(j)))
+        .collect()
+}
+
+/// Read the finished points of an earlier sweep of the same physical scene from `path`;
+/// nothing if the file does not exist.
+pub fn load_finished(path: &Path, scene: &Scene) -> Result<Vec<RunResult>, SweepError> {
+    let error = |message: String| SweepError::Results {
+        path: path.display().to_string(),
+        message,
+    };
+    let text = match std::fs::read_to_string(path) {
+        Ok(text) => text,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
+        Err(e) => return Err(error(e.to_string())),
+    };
+    let stored: Stored = serde_json::from_str(&text).map_err(|e| error(e.to_string()))?;
+    if let Some(key) = physics_difference(&stored.scene, scene) {
+        return Err(error(format!(
+            "it was written for a different scene ({key} differs); \
+             choose another results file or remove it"
+        )));
+    }
+    Ok(stored
+        .points
+        .into_iter()
+        .filter(|p| !p.interrupted)
+        .collect())
+}
+
+/// The first scene key, other than those that only choose runs, in which `a` and `b` differ.
+fn physics_difference(a: &Scene, b: &Scene) -> Option<String> {
+    let physics = |s: &Scene| -> toml::Table {
+        let mut t = toml::Table::try_from(s).unwrap_or_default();
+        for key in [
+            "description",
+            "scheme",
+            "dt",
+            "seed",
+            "runs",
+            "threads",
+            "sweep",
+        ] {
+            t.remove(key);
+        }
+        t
+    };
+    let (a, b) = (physics(a), physics(b));
+    a.keys()
+        .chain(b.keys())
+        .find(|k| a.get(*k) != b.get(*k))
+        .cloned()
+}
+
+/// Hooks of a running sweep: `control` for the runs, `on_point` after each finished run with
+/// the results so far (to save them).
+pub struct Hooks<'a> {
+    pub control: Control<'a>,
+    pub on_point: &'a (dyn Fn(&SweepResults) + Sync),
+}
+
+/// Run the points of `scene`'s sweep that are not in `finished` (which stay in the results),
+/// on `scene.threads` workers (0: one per core).
+pub fn run_sweep(
+    scene: &Scene,
+    finished: Vec<RunResult>,
+    hooks: Hooks,
+) -> Result<SweepResults, SweepError> {
+    let w = spec(scene);
+    let mut schemes = HashMap::new();
+    for name in w.schemes.iter().chain([&w.baseline_scheme]) {
+        let scheme = resolve(name)
+            .map_err(|e| ParamError::new("sweep.schemes", name, format!("not a scheme: {e}")))?;
+        schemes.insert(name.clone(), scheme);
+    }
+    // Finished points outside the plan (a narrower sweep of the same scene) are kept too.
+    let pending = pending(scene, &finished);
+    let points = Mutex::new(finished);
+    let on_result = |r: RunResult| {
+        if r.interrupted {
+            return;
+        }
+        let mut points = lock(&points);
+        points.push(r);
+        (hooks.on_point)(&SweepResults::new(scene, points.clone()));
+    };
+    run_parallel(scene, &pending, &schemes, hooks.control, &on_result)?;
+    let points = points.into_inner().unwrap_or_else(|e| e.into_inner());
+    Ok(SweepResults::new(scene, points))
+}
+
+impl SweepResults {
+    /// Aggregate `points` of `scene`'s sweep.
+    pub fn new(scene: &Scene, mut points: Vec<RunResult>) -> SweepResults {
+        let w = spec(scene);
+        let planned = plan(scene);
+        let index = |p: &RunResult| planned.iter().position(|j| j.matches(&p.job()));
+        points.sort_by_key(|p| index(p).unwrap_or(usize::MAX));
+        let complete = planned
+            .iter()
+            .all(|j| points.iter().any(|p| j.matches(&p.job())));
+        let at = |scheme: &str, dt: f64| -> Option<Aggregate> {
+            let runs: Vec<&RunResult> = points
+                .iter()
+                .filter(|p| p.scheme == scheme && (p.dt - dt).abs() <= 1e-9 * dt)
+                .collect();
+            (!runs.is_empty()).then(|| Aggregate::of(&runs, scene.kbt))
+        };
+        let baseline = at(&w.baseline_scheme, w.baseline_dt());
+        let mut rows: Vec<Aggregate> = w
+            .schemes
+            .iter()
+            .flat_map(|s| w.grid().into_iter().filter_map(move |dt| at(s, dt)))
+            .collect();
+        if let Some(b) = &baseline {
+            rows.iter_mut().for_each(|r| r.compare_with(b));
+        }
+        let mut summary: Vec<SchemeSummary> =
+            w.schemes.iter().map(|s| summarise(s, &rows)).collect();
+        let reference = summary
+            .iter()
+            .find(|s| s.scheme == w.reference)
+            .and_then(raw_efficiency);
+        for s in &mut summary {
+            s.efficiency = raw_efficiency(s).zip(reference).map(|(e, r)| e / r);
+        }
+        SweepResults {
+            scene: scene.clone(),
+            points,
+            rows,
+            baseline,
+            summary,
+            complete,
+        }
+    }
+
+    /// Write the results as JSON to `path`, atomically (a temporary file renamed over it).
+    pub fn write_json(&self, path: &Path) -> std::io::Result<()> {
+        let text = serde_json::to_string_pretty(self).map_err(std::io::Error::other)?;
+        let tmp = path.with_extension("json.tmp");
+        std::fs::write(&tmp, text)?;
+        std::fs::rename(&tmp, path)
+    }
+}
+
+fn raw_efficiency(s: &SchemeSummary) -> Option<f64> {
+    let e = s.critical_dt_10? / s.ms_per_step?;
+    e.is_finite().then_some(e)
+}
+
+/// Critical step sizes, stability and cost of `scheme` from its `rows`.
+fn summarise(scheme: &str, rows: &[Aggregate]) -> SchemeSummary {
+    let rows: Vec<&Aggregate> = rows.iter().filter(|r| r.scheme == scheme).collect();
+    let curve: Vec<(f64, f64)> = rows.iter().map(|r| (r.dt, r.critical_error())).collect();
+    let [c10, c1] = THRESHOLDS.map(|t| critical_dt(&curve, t));
+    let first_unstable = rows.iter().position(|r| !r.stable);
+    let stable_until = first_unstable.unwrap_or(rows.len());
+    let stable_rows = || rows.iter().filter(|r| r.stable);
+    let mean = |f: fn(&Aggregate) -> Option<f64>| {
+        let v: Vec<f64> = stable_rows().filter_map(|r| f(r)).collect();
+        (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
+    };
+    SchemeSummary {
+        scheme: scheme.to_string(),
+        critical_dt_10: c10.and_then(Critical::dt),
+        critical_dt_1: c1.and_then(Critical::dt),
+        critical_10: c10,
+        critical_1: c1,
+        stability_dt: stable_until.checked_sub(1).map(|k| rows[k].dt),
+        first_blow_up_dt: first_unstable.map(|k| rows[k].dt),
+        ms_per_step: mean(|r| r.ms_per_step),
+        force_evaluations_per_step: mean(|r| r.force_evaluations_per_step),
+        efficiency: None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+    use std::sync::atomic::AtomicUsize;
+    use std::sync::atomic::{AtomicBool, Ordering};
+
+    fn tiny() -> Scene {
+        Scene {
+            n: 100,
+            time: 1.0,
+            average_fraction: 0.5,
+            runs: 2,
+            threads: 2,
+            sweep: Some(SweepSpec {
+                schemes: vec!["aboba".into(), "vv".into()],
+                dt_min: 0.05,
+                dt_max: 0.1,
+                dt_factor: 2.0,
+                reference: "vv".into(),
+                baseline_scheme: "aboba".into(),
+                baseline_dt: Some(0.025),
+            }),
+            ..Default::default()
+        }
+    }
+
+    fn sweep_counting(scene: &Scene, finished: Vec<RunResult>, ran: &AtomicUsize) -> SweepResults {
+        let stop = AtomicBool::new(false);
+        let on_point = |_: &SweepResults| {
+            ran.fetch_add(1, Ordering::Relaxed);
+        };
+        let hooks = Hooks {
+            control: Control {
+                stop: &stop,
+                progress: &|_| {},
+            },
+            on_point: &on_point,
+        };
+        run_sweep(scene, finished, hooks).unwrap()
+    }
+
+    #[test]
+    fn plan_covers_schemes_grid_seeds_and_the_baseline_once() {
+        let jobs = plan(&tiny());
+        // 2 schemes x 2 dt x 2 seeds + 2 baseline runs at dt = 0.025.
+        assert_eq!(jobs.len(), 10);
+        let mut s = tiny();
+        s.sweep.as_mut().unwrap().baseline_dt = Some(0.05);
+        assert_eq!(plan(&s).len(), 8);
+    }
+
+    #[test]
+    fn a_resumed_sweep_runs_only_the_missing_points() {
+        let scene = tiny();
+        let ran = AtomicUsize::new(0);
+        let full = sweep_counting(&scene, Vec::new(), &ran);
+        assert!(full.complete && full.points.len() == 10);
+        assert_eq!(ran.load(Ordering::Relaxed), 10);
+
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("sweep.json");
+        let mut partial = full.points.clone();
+        partial.truncate(6);
+        SweepResults::new(&scene, partial)
+            .write_json(&path)
+            .unwrap();
+        let finished = load_finished(&path, &scene).unwrap();
+        assert_eq!(finished.len(), 6);
+        let again = AtomicUsize::new(0);
+        let resumed = sweep_counting(&scene, finished.clone(), &again);
+        assert_eq!(again.load(Ordering::Relaxed), 4);
+        assert!(resumed.complete);
+        // The stored points are kept as read; the others are run again, reproducibly.
+        assert_eq!(resumed.points[..6], finished[..]);
+        let tc = |r: &SweepResults| -> Vec<_> {
+            r.points[6..]
+                .iter()
+                .map(|p| p.configurational_temperature)
+                .collect()
+        };
+        assert_eq!(tc(&resumed), tc(&full));
+    }
+
+    #[test]
+    fn a_results_file_of_another_scene_is_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("sweep.json");
+        SweepResults::new(&tiny(), Vec::new())
+            .write_json(&path)
+            .unwrap();
+        let other = Scene {
+            gamma: 40.5,
+            ..tiny()
+        };
+        let e = load_finished(&path, &other).unwrap_err().to_string();
+        assert!(e.contains("gamma"), "{e}");
+        let more_runs = Scene { runs: 5, ..tiny() };
+        assert!(load_finished(&path, &more_runs).is_ok());
+        assert!(load_finished(&dir.path().join("none.json"), &tiny())
+            .unwrap()
+            .is_empty());
+    }
+
+    #[test]
+    fn efficiency_is_relative_to_the_reference() {
+        let scene = tiny();
+        let point = |scheme: &str, dt: f64, tc: f64, ms: f64| RunResult {
+            scheme: scheme.into(),
+            dt,
+            seed: 1,
+            steps: 1,
+            completed_steps: 1,
+            stable: true,
+            error: None,
+            interrupted: false,
+            samples: 1,
+            kinetic_temperature: Some(1.0),
+            configurational_temperature: Some(tc),
+            potential_energy: Some(1.0),
+            pressure: Some(1.0),
+            ms_per_step: Some(ms),
+            force_evaluations_per_step: Some(1.0),
+            pair_distance_evaluations_per_step: Some(1.0),
+            rdf: None,
+            diffusion: None,
+        };
+        // Both errors grow as dt^2 and cross 10 % at 0.05 sqrt(2) (vv) and 0.1 sqrt(2)
+        // (aboba, at twice the cost per step): equally efficient.
+        let points = vec![
+            point("vv", 0.05, 1.05, 1.0),
+            point("vv", 0.1, 1.2, 1.0),
+            point("aboba", 0.1, 1.05, 2.0),
+            point("aboba", 0.2, 1.2, 2.0),
+        ];
+        let mut scene = Scene { runs: 1, ..scene };
+        scene.sweep.as_mut().unwrap().dt_max = 0.2;
+        let r = SweepResults::new(&scene, points);
+        let by = |name: &str| r.summary.iter().find(|s| s.scheme == name).unwrap();
+        let root2 = 2f64.sqrt();
+        assert_relative_eq!(
+            by("vv").critical_dt_10.unwrap(),
+            0.05 * root2,
+            max_relative = 1e-9
+        );
+        assert_relative_eq!(
+            by("aboba").critical_dt_10.unwrap(),
+            0.1 * root2,
+            max_relative = 1e-9
+        );
+        assert_eq!(by("vv").efficiency, Some(1.0));
+        assert_relative_eq!(by("aboba").efficiency.unwrap(), 1.0, max_relative = 1e-9);
+        assert_eq!(
+            by("aboba").critical_1,
+            Some(Critical::BelowRange { dt_min: 0.1 })
+        );
+        assert_eq!(by("aboba").critical_dt_1, None);
+        assert!(!r.complete && r.baseline.is_none());
+    }
+}
