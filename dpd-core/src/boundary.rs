@@ -1,4 +1,5 @@
-//! Periodic orthorhombic simulation box with minimum-image convention.
+//! Periodic orthorhombic simulation box with minimum-image convention, and Lees-Edwards
+//! sliding boundaries on top of it.
 
 use crate::error::{positive, ParamError};
 use crate::Vec3;
@@ -86,6 +87,159 @@ fn image1(d: f64, l: f64, inv: f64) -> f64 {
     }
 }
 
+/// Lees-Edwards sliding-brick boundary conditions on a [`PeriodicBox`] (algorithms.md
+/// section 8): flow along x, velocity gradient along y, shear rate `kappa = rate`.
+///
+/// The periodic image of the box at `y + L_y` is displaced by `offset` along x and moves with
+/// x-velocity `rate * L_y` relative to the box (the image at `y - L_y` by `-offset`, with
+/// `-rate * L_y`). The offset is `rate * L_y * t` modulo `L_x`, advanced by every drift, so
+/// that it follows the positions through the sub-flows of a step. Consequences, all in this
+/// type:
+/// - minimum image: a separation crossing the y boundary `n` times (`n` in -1, 0, 1 for
+///   wrapped positions) loses `n * offset` along x, and the pair's relative velocity loses
+///   `n * rate * L_y` along x ([`LeesEdwards::min_image`]);
+/// - wrapping: a particle leaving through `y = L_y` re-enters at `y - L_y`, `x - offset`, with
+///   x-momentum reduced by `m rate L_y` (and the reverse through `y = 0`).
+///
+/// The streaming velocity consistent with these images is `u_x(y) = rate (y - L_y / 2)`.
+/// With `rate = 0` every operation gives bitwise the periodic result.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct LeesEdwards {
+    rate: f64,
+    /// In `[0, L_x)`.
+    offset: f64,
+    /// Total variation of the offset so far, the sum of `|rate L_y h|` over drifts: a bound on
+    /// how far the images slid between two times (the neighbour list's rebuild test).
+    travel: f64,
+}
+
+impl LeesEdwards {
+    /// Shear rate `rate` (finite; 0 is allowed and reproduces the periodic box), offset 0.
+    pub fn new(rate: f64) -> Result<Self, ParamError> {
+        if !rate.is_finite() {
+            return Err(ParamError::new(
+                "shear_rate",
+                rate,
+                "must be finite (flow along x, gradient along y)",
+            ));
+        }
+        Ok(LeesEdwards {
+            rate,
+            offset: 0.0,
+            travel: 0.0,
+        })
+    }
+
+    /// Restore a saved state; `offset` must lie in `[0, L_x)`, `travel` be finite and >= 0.
+    pub(crate) fn restore(
+        rate: f64,
+        offset: f64,
+        travel: f64,
+        bx: &PeriodicBox,
+    ) -> Result<Self, ParamError> {
+        let le = LeesEdwards::new(rate)?;
+        if !(0.0..bx.lengths.x).contains(&offset) {
+            return Err(ParamError::new(
+                "shear_offset",
+                offset,
+                format!("must be in [0, L_x = {})", bx.lengths.x),
+            ));
+        }
+        if !(travel.is_finite() && travel >= 0.0) {
+            return Err(ParamError::new(
+                "shear_travel",
+                travel,
+                "must be finite and >= 0",
+            ));
+        }
+        Ok(LeesEdwards {
+            offset,
+            travel,
+            ..le
+        })
+    }
+
+    /// Shear rate `kappa` (inverse time units).
+    pub fn rate(&self) -> f64 {
+        self.rate
+    }
+
+    /// Current x-offset of the image at `y + L_y`, in `[0, L_x)`.
+    pub fn offset(&self) -> f64 {
+        self.offset
+    }
+
+    /// Total distance the images have slid so far (sum of `|rate L_y h|` over drifts).
+    pub fn travel(&self) -> f64 {
+        self.travel
+    }
+
+    /// x-velocity of the image at `y + L_y` relative to the box, `rate * L_y`.
+    pub fn image_velocity(&self, bx: &PeriodicBox) -> f64 {
+        self.rate * bx.lengths.y
+    }
+
+    /// Streaming velocity `u_x(y) = rate (y - L_y / 2)` of the imposed linear profile.
+    pub fn streaming_velocity(&self, bx: &PeriodicBox, y: f64) -> f64 {
+        self.rate * (y - 0.5 * bx.lengths.y)
+    }
+
+    /// Advance the offset by a drift of length `h` (any sign).
+    pub(crate) fn advance(&mut self, bx: &PeriodicBox, h: f64) {
+        let slide = self.rate * bx.lengths.y * h;
+        self.offset = wrap1(self.offset + slide, bx.lengths.x);
+        self.travel += slide.abs();
+    }
+
+    /// The image of `d = q_i - q_j` closest to the origin, and the x-velocity to add to
+    /// `v_i - v_j` for that image (`-n rate L_y` when the image of j lies `n` boxes up).
+    /// Bitwise [`PeriodicBox::min_image`] when the offset and rate are 0.
+    #[inline(always)]
+    pub fn min_image(&self, bx: &PeriodicBox, d: Vec3) -> (Vec3, f64) {
+        let (l, inv) = (bx.lengths, bx.inv);
+        let n = image_count(d.y, l.y, inv.y);
+        let image = Vec3::new(
+            image1(d.x - n * self.offset, l.x, inv.x),
+            d.y - n * l.y,
+            image1(d.z, l.z, inv.z),
+        );
+        (image, -n * self.rate * l.y)
+    }
+
+    /// `q` mapped into the box, and the number of times `n` it crossed the y boundary upwards
+    /// (negative: downwards); the caller subtracts `n m rate L_y` from the x-momentum.
+    #[inline(always)]
+    pub fn wrap(&self, bx: &PeriodicBox, q: Vec3) -> (Vec3, f64) {
+        let l = bx.lengths;
+        let y = wrap1(q.y, l.y);
+        let n = if y == q.y {
+            0.0
+        } else {
+            ((q.y - y) * bx.inv.y).round()
+        };
+        let x = wrap1(q.x - n * self.offset, l.x);
+        (Vec3::new(x, y, wrap1(q.z, l.z)), n)
+    }
+}
+
+/// The `n` with `d - n l` the image of [`image1`]: same branches, same result.
+#[inline(always)]
+fn image_count(d: f64, l: f64, inv: f64) -> f64 {
+    let half = 0.5 * l;
+    let n = if d > half {
+        1.0
+    } else if d < -half {
+        -1.0
+    } else {
+        0.0
+    };
+    if (d - n * l).abs() <= half {
+        n
+    } else {
+        (d * inv).round()
+    }
+}
+
 #[inline(always)]
 fn wrap1(x: f64, l: f64) -> f64 {
     let y = if x >= l {
@@ -147,6 +301,48 @@ mod tests {
             b.min_image(Vec3::new(9.0, -13.0, 0.0)),
             Vec3::new(1.0, -1.0, 0.0)
         );
+    }
+
+    #[test]
+    fn lees_edwards_images_slide_along_x() {
+        let b = PeriodicBox::new([10.0, 4.0, 5.0]).unwrap();
+        let mut le = LeesEdwards::new(0.5).unwrap();
+        le.advance(&b, 2.5); // offset = 0.5 * 4 * 2.5 = 5
+        assert_eq!(le.offset(), 5.0);
+        // i near the top, j near the bottom: j's image lies one box up, shifted by +5 in x and
+        // moving at +2 in x, so v_ij loses 2.
+        let (d, dv) = le.min_image(&b, Vec3::new(4.5, 3.5, 0.0));
+        assert_eq!(d, Vec3::new(-0.5, -0.5, 0.0));
+        assert_eq!(dv, -2.0);
+        let (d, dv) = le.min_image(&b, Vec3::new(-4.5, -3.5, 0.0));
+        assert_eq!(d, Vec3::new(0.5, 0.5, 0.0));
+        assert_eq!(dv, 2.0);
+        // Leaving through the top re-enters at the bottom, 5 back in x.
+        let (q, n) = le.wrap(&b, Vec3::new(1.0, 4.25, 1.0));
+        assert_eq!((q, n), (Vec3::new(6.0, 0.25, 1.0), 1.0));
+        let (q, n) = le.wrap(&b, Vec3::new(7.0, -0.25, 1.0));
+        assert_eq!((q, n), (Vec3::new(2.0, 3.75, 1.0), -1.0));
+        le.advance(&b, -3.0);
+        assert_eq!((le.offset(), le.travel()), (9.0, 11.0));
+        assert_eq!(LeesEdwards::new(f64::NAN).unwrap_err().field, "shear_rate");
+    }
+
+    #[test]
+    fn zero_shear_is_the_periodic_box() {
+        let b = PeriodicBox::new([3.0, 4.0, 5.0]).unwrap();
+        let mut le = LeesEdwards::new(0.0).unwrap();
+        le.advance(&b, 1.0);
+        for d in [
+            Vec3::new(2.9, -3.1, 0.3),
+            Vec3::new(-1.2, 2.5, -4.9),
+            Vec3::new(0.1, 0.2, 0.3),
+        ] {
+            assert_eq!(le.min_image(&b, d), (b.min_image(d), 0.0));
+            assert_eq!(
+                le.wrap(&b, d + Vec3::new(0.0, 3.0, 0.0)).0,
+                b.wrap(d + Vec3::new(0.0, 3.0, 0.0))
+            );
+        }
     }
 
     #[test]

@@ -1,7 +1,8 @@
 //! Checkpoint and restart.
 //!
 //! A checkpoint holds everything a step depends on: box, parameters, time step, random key,
-//! step counter, positions, momenta, masses, types, neighbour skin, the positions of the last
+//! step counter, positions, momenta, masses, types, neighbour skin, the Lees-Edwards state
+//! (shear rate, offset, travel), the positions and the Lees-Edwards state of the last
 //! neighbour-list build (which fix the sweep order and the next rebuild), the name of the
 //! scheme, and what a scheme carries between steps (the full forces of velocity Verlet, with
 //! their noise). Pair geometry and conservative forces are not stored: they are pure functions
@@ -13,7 +14,7 @@
 //! directory, are synced, then renamed over the target, so an interrupted write never destroys
 //! the previous checkpoint.
 
-use crate::boundary::PeriodicBox;
+use crate::boundary::{LeesEdwards, PeriodicBox};
 use crate::error::CheckpointError;
 use crate::params::Params;
 use crate::system::System;
@@ -23,7 +24,7 @@ use std::io::Write;
 use std::path::Path;
 
 const MAGIC: &[u8; 8] = b"DPDCHKPT";
-const VERSION: u32 = 2;
+const VERSION: u32 = 3;
 const HEADER: usize = 8 + 4 + 8 + 4;
 
 #[derive(Serialize, Deserialize)]
@@ -43,6 +44,22 @@ struct Payload {
     /// Positions at the last neighbour-list build: the sweep order and the rebuild times
     /// depend on them (empty before the first build).
     list_reference: Vec<Vec3>,
+    /// Lees-Edwards `[rate, offset, travel]`, now and at the last neighbour-list build.
+    shear: Option<[f64; 3]>,
+    list_shear: Option<[f64; 3]>,
+}
+
+fn shear_state(le: Option<&LeesEdwards>) -> Option<[f64; 3]> {
+    le.map(|le| [le.rate(), le.offset(), le.travel()])
+}
+
+fn restore_shear(
+    state: Option<[f64; 3]>,
+    bx: &PeriodicBox,
+) -> Result<Option<LeesEdwards>, crate::ParamError> {
+    state
+        .map(|[rate, offset, travel]| LeesEdwards::restore(rate, offset, travel, bx))
+        .transpose()
 }
 
 impl System {
@@ -66,6 +83,8 @@ impl System {
             kind: self.kind.clone(),
             full_forces: self.full_valid.then(|| self.full.clone()),
             list_reference: self.list.reference().to_vec(),
+            shear: shear_state(self.shear.as_ref()),
+            list_shear: shear_state(self.list.reference_shear()),
         };
         let data = bincode::serialize(&payload).map_err(|e| CheckpointError::Decode {
             path: path.display().to_string(),
@@ -138,6 +157,8 @@ impl System {
             path: name.clone(),
             source,
         };
+        let shear = restore_shear(payload.shear, &payload.bx).map_err(invalid)?;
+        let list_shear = restore_shear(payload.list_shear, &payload.bx).map_err(invalid)?;
         let mut sys = System::builder(payload.params, payload.bx, payload.q)
             .momenta(payload.p)
             .masses(payload.mass)
@@ -147,6 +168,9 @@ impl System {
             .skin(payload.skin)
             .build()
             .map_err(invalid)?;
+        // The saved positions are inside the box, so the builder moved no particle across the
+        // sliding boundary; the saved offset is restored as it was.
+        sys.shear = shear;
         sys.step = payload.step;
         if !payload.list_reference.is_empty() {
             if payload.list_reference.len() != sys.len() {
@@ -157,7 +181,8 @@ impl System {
                 )));
             }
             let rc = sys.params.rc();
-            sys.list.rebuild(&payload.list_reference, &sys.bx, rc);
+            sys.list
+                .rebuild(&payload.list_reference, &sys.bx, list_shear.as_ref(), rc);
         }
         if let Some(full) = payload.full_forces {
             if full.len() != sys.len() {

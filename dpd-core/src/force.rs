@@ -1,10 +1,10 @@
 //! Per-particle forces summed over the interacting pairs in sweep order.
 
-use crate::pairs::{Disjoint, PairTable};
+use crate::pairs::{Disjoint, PairTable, Virial};
 use crate::params::Params;
 use crate::rng::pair_normal;
 use crate::system::System;
-use crate::Vec3;
+use crate::{Tensor, Vec3};
 use dpd_ir::SweepOrder;
 
 /// `out_i = F^C_i = sum_j a_ij (1 - r_ij/r_c) e_ij`.
@@ -24,9 +24,27 @@ pub(crate) fn conservative(pairs: &PairTable, params: &Params, kind: &[u16], out
 
 /// Full DPD force at the current momenta into `sys.full`:
 /// `sum_j [a w - gamma w_R^2 (e . v_ij) + sigma w_R zeta_ij / sqrt(dt)] e_ij`,
-/// with `zeta_ij` the pair normal of `stream` in the current step. Multiplied by a step `h`
-/// this is the F kick of algorithms.md section 2.
+/// with `zeta_ij` the pair normal of `stream` in the current step and `v_ij` including the image
+/// velocity across a sliding boundary. Multiplied by a step `h` this is the F kick of
+/// algorithms.md section 2. When pair impulses are being recorded, the pair virial of the
+/// dissipative and random parts goes to `sys.full_virial`.
 pub(crate) fn full(sys: &mut System, stream: u8) {
+    sys.full_virial = match (sys.shear.is_some(), sys.impulses.is_some()) {
+        (false, false) => {
+            full_with::<false, ()>(sys, stream);
+            None
+        }
+        (true, false) => {
+            full_with::<true, ()>(sys, stream);
+            None
+        }
+        (false, true) => Some(full_with::<false, Tensor>(sys, stream)),
+        (true, true) => Some(full_with::<true, Tensor>(sys, stream)),
+    };
+}
+
+#[inline(always)]
+fn full_with<const SHEARED: bool, V: Virial>(sys: &mut System, stream: u8) -> V {
     let System {
         ref pairs,
         ref p,
@@ -43,10 +61,11 @@ pub(crate) fn full(sys: &mut System, stream: u8) {
     let full = Disjoint::new(full);
     let gamma = params.gamma();
     let noise = params.sigma() / dt.sqrt();
-    pairs.visit(SweepOrder::Forward, |pair| {
+    pairs.visit_sum(SweepOrder::Forward, |pair| {
         let (i, j) = (pair.i as usize, pair.j as usize);
-        let u = pair.e.dot(&(p[i] * inv_mass[i] - p[j] * inv_mass[j]));
-        let mut f = params.a(kind[i], kind[j]) * pair.w - gamma * pair.wr * pair.wr * u;
+        let u = pair.normal_velocity::<SHEARED>(p[i] * inv_mass[i], p[j] * inv_mass[j]);
+        let conservative = params.a(kind[i], kind[j]) * pair.w;
+        let mut f = conservative - gamma * pair.wr * pair.wr * u;
         if noise > 0.0 {
             f += noise * pair.wr * pair_normal(seed, step, stream, pair.i, pair.j);
         }
@@ -56,5 +75,6 @@ pub(crate) fn full(sys: &mut System, stream: u8) {
             *full.get(i) += fe;
             *full.get(j) -= fe;
         }
-    });
+        V::of(pair, f - conservative)
+    })
 }

@@ -8,6 +8,8 @@
 //! - `q` positions (wrapped into the periodic box), `p` momenta, `m` masses; for a pair
 //!   `q_ij = q_i - q_j` under minimum image, `e_ij = q_ij / r_ij` points from j to i.
 //! - A sub-flow advances the state by a step length `h = c * dt`.
+//! - Shear ([`LeesEdwards`]): flow along x, gradient along y; a pair across the sliding
+//!   boundary carries the image's velocity shift in [`pairs::Pair::dvx`].
 //! - Pairwise sweeps visit the interacting pairs in one documented order, colour by colour of
 //!   a cell colouring (see [`neighbour`]), or exactly that order reversed. The order does not
 //!   depend on the thread count; cells of one colour are processed in parallel.
@@ -30,7 +32,7 @@ pub mod system;
 #[doc(hidden)]
 pub mod __private;
 
-pub use boundary::PeriodicBox;
+pub use boundary::{LeesEdwards, PeriodicBox};
 pub use dpd_ir::{Flow, Stage, SweepOrder};
 pub use error::{BlowUp, CheckpointError, ParamError};
 pub use params::Params;
@@ -39,3 +41,7 @@ pub use system::{System, SystemBuilder};
 
 /// Three-vector of `f64`, the type of positions, momenta and forces.
 pub type Vec3 = nalgebra::Vector3<f64>;
+
+/// 3 x 3 matrix of `f64`, the type of stress and virial tensors (row index: position
+/// component, column index: force component).
+pub type Tensor = nalgebra::Matrix3<f64>;

@@ -17,8 +17,23 @@
 //! The order is a function of the positions at the last build; a checkpoint stores those
 //! positions so that a restarted run rebuilds the same list. The list is rebuilt when a particle
 //! has moved more than `skin / 2` since the last build.
+//!
+//! # Lees-Edwards
+//!
+//! Under a sliding boundary ([`LeesEdwards`]) with a non-zero offset, the cells across the y
+//! boundary are misaligned along x. Then the cells of the top row (`cy = n_y - 1`) own all
+//! pairs with the images of the bottom row: for each `dz` the four image cells that overlap the
+//! x-range `[cx - 1, cx + 2)` cell widths, scanned in order of increasing x. The bottom row
+//! drops its three stencil entries that cross downwards. Two top-row cells of one colour may
+//! reach the same bottom cell, so these crossing runs form an extra colour after the 18, visited
+//! sequentially (`Runs::colours` then has 19 groups). Everything else keeps the periodic order;
+//! with offset 0 (in particular shear rate 0) the list is exactly the periodic one. Positions
+//! that crossed the y boundary since the build carry the offset of their crossing, so the
+//! rebuild test allows for the distance `travel` the images slid since the build: it rebuilds
+//! when a particle moved more than `(skin - 3 travel) / 2` (one travel for the displacement of
+//! each particle of a pair, one for the slide between them).
 
-use crate::boundary::PeriodicBox;
+use crate::boundary::{LeesEdwards, PeriodicBox};
 use crate::Vec3;
 
 /// Particles binned into cells of edge at least `min_cell`.
@@ -108,13 +123,14 @@ impl CellGrid {
         if !self.coloured {
             return 0;
         }
-        let [_, ny, nz] = self.dims;
-        let (cx, cy, cz) = (c / (ny * nz), (c / nz) % ny, c % nz);
+        let (cx, cy, cz) = self.coordinates(c);
         (cx % 2) * 9 + (cy % 3) * 3 + cz % 3
     }
 
     /// Call `f(i, j, r2)` for every pair owned by cell `c` with squared minimum-image distance
-    /// `r2 < cutoff^2` (`cutoff` at most the cell edge of the last build), in scan order.
+    /// `r2 < cutoff^2` (`cutoff` at most the cell edge of the last build), in scan order,
+    /// except the pairs that cross a sliding boundary (see
+    /// [`CellGrid::for_each_sliding_pair_of_cell`]).
     ///
     /// Positions are read in cell order, so the inner loop reads contiguous memory; periodic
     /// images come from a per-neighbour shift instead of a minimum-image test per pair.
@@ -122,16 +138,20 @@ impl CellGrid {
         &self,
         c: usize,
         bx: &PeriodicBox,
+        shear: Option<&LeesEdwards>,
         cutoff: f64,
         mut f: impl FnMut(u32, u32, f64),
     ) {
         let cut2 = cutoff * cutoff;
-        let range = |c: usize| self.cell_start[c] as usize..self.cell_start[c + 1] as usize;
-        let own = range(c);
+        let own = self.range(c);
         if self.dims == [1, 1, 1] {
+            let image = |d: Vec3| match shear {
+                None => bx.min_image(d),
+                Some(le) => le.min_image(bx, d).0,
+            };
             for a in own.clone() {
                 for b in a + 1..own.end {
-                    let r2 = bx.min_image(self.sorted[a] - self.sorted[b]).norm_squared();
+                    let r2 = image(self.sorted[a] - self.sorted[b]).norm_squared();
                     if r2 < cut2 {
                         f(self.members[a], self.members[b], r2);
                     }
@@ -147,33 +167,123 @@ impl CellGrid {
                 }
             }
         }
+        let sliding = is_sliding(shear);
         let [nx, ny, nz] = self.dims;
-        let (cx, cy, cz) = (c / (ny * nz), (c / nz) % ny, c % nz);
+        let (cx, cy, cz) = self.coordinates(c);
         let l = bx.lengths();
         for &[dx, dy, dz] in &HALF_STENCIL {
-            let (x, sx) = wrap_cell(cx, dx, nx, l.x);
             let (y, sy) = wrap_cell(cy, dy, ny, l.y);
+            if sliding && sy != 0.0 {
+                continue;
+            }
+            let (x, sx) = wrap_cell(cx, dx, nx, l.x);
             let (z, sz) = wrap_cell(cz, dz, nz, l.z);
-            let shift = Vec3::new(sx, sy, sz);
-            let other = range((x * ny + y) * nz + z);
-            for a in own.clone() {
-                let qa = self.sorted[a] + shift;
-                for b in other.clone() {
-                    let r2 = (qa - self.sorted[b]).norm_squared();
-                    if r2 < cut2 {
-                        f(self.members[a], self.members[b], r2);
-                    }
-                }
+            self.scan(
+                &own,
+                (x * ny + y) * nz + z,
+                Vec3::new(sx, sy, sz),
+                cut2,
+                &mut f,
+            );
+        }
+    }
+
+    /// Call `f(i, j, r2)` for the pairs that cell `c` owns across a sliding Lees-Edwards
+    /// boundary (none unless `c` is in the top row and the offset is non-zero): pairs with the
+    /// images, one box up, of the bottom row's cells that overlap the x-range
+    /// `[cx - 1, cx + 2)` cell widths, for `dz` in -1, 0, 1 and those cells in order of x.
+    pub fn for_each_sliding_pair_of_cell(
+        &self,
+        c: usize,
+        bx: &PeriodicBox,
+        le: &LeesEdwards,
+        cutoff: f64,
+        mut f: impl FnMut(u32, u32, f64),
+    ) {
+        let [nx, ny, nz] = self.dims;
+        let (cx, cy, cz) = self.coordinates(c);
+        if !is_sliding(Some(le)) || self.dims == [1, 1, 1] || cy + 1 != ny {
+            return;
+        }
+        let cut2 = cutoff * cutoff;
+        let own = self.range(c);
+        let l = bx.lengths();
+        // The image of bottom cell k starts at x = (k + s + frac) w, s + frac = offset / w.
+        let s = (le.offset() * nx as f64 / l.x).floor() as isize;
+        for dz in [-1, 0, 1] {
+            let (z, sz) = wrap_cell(cz, dz, nz, l.z);
+            for t in 0..4 {
+                // Unwrapped bottom-cell index K = k + m n_x whose image overlaps the range.
+                let big_k = cx as isize - s - 2 + t;
+                let k = big_k.rem_euclid(nx as isize) as usize;
+                let m = big_k.div_euclid(nx as isize) as f64;
+                let shift = Vec3::new(-(le.offset() + m * l.x), -l.y, sz);
+                self.scan(&own, k * ny * nz + z, shift, cut2, &mut f);
             }
         }
     }
 
     /// Call `f(i, j, r2)` once for every unordered pair with `r2 < cutoff^2`, cell by cell.
-    pub fn for_each_pair(&self, bx: &PeriodicBox, cutoff: f64, mut f: impl FnMut(u32, u32, f64)) {
+    pub fn for_each_pair(
+        &self,
+        bx: &PeriodicBox,
+        shear: Option<&LeesEdwards>,
+        cutoff: f64,
+        mut f: impl FnMut(u32, u32, f64),
+    ) {
         for c in 0..self.cells() {
-            self.for_each_pair_of_cell(c, bx, cutoff, &mut f);
+            self.for_each_pair_of_cell(c, bx, shear, cutoff, &mut f);
+            if let Some(le) = shear {
+                self.for_each_sliding_pair_of_cell(c, bx, le, cutoff, &mut f);
+            }
         }
     }
+
+    /// Pairs between the particles `own` of a cell, moved by `shift`, and those of cell `other`.
+    #[inline(always)]
+    fn scan(
+        &self,
+        own: &std::ops::Range<usize>,
+        other: usize,
+        shift: Vec3,
+        cut2: f64,
+        f: &mut impl FnMut(u32, u32, f64),
+    ) {
+        let other = self.range(other);
+        for a in own.clone() {
+            let qa = self.sorted[a] + shift;
+            for b in other.clone() {
+                let r2 = (qa - self.sorted[b]).norm_squared();
+                if r2 < cut2 {
+                    f(self.members[a], self.members[b], r2);
+                }
+            }
+        }
+    }
+
+    /// Indices into `members` / `sorted` of the particles of cell `c`.
+    #[inline(always)]
+    fn range(&self, c: usize) -> std::ops::Range<usize> {
+        self.cell_start[c] as usize..self.cell_start[c + 1] as usize
+    }
+
+    /// `(cx, cy, cz)` of cell `c`.
+    #[inline(always)]
+    fn coordinates(&self, c: usize) -> (usize, usize, usize) {
+        let [_, ny, nz] = self.dims;
+        (c / (ny * nz), (c / nz) % ny, c % nz)
+    }
+
+    /// Whether cell `c` is in the top row (`cy = n_y - 1`) of a grid of more than one cell.
+    fn is_top_row(&self, c: usize) -> bool {
+        self.dims != [1, 1, 1] && self.coordinates(c).1 + 1 == self.dims[1]
+    }
+}
+
+/// Whether `shear` slides the images out of alignment (non-zero offset).
+#[inline(always)]
+fn is_sliding(shear: Option<&LeesEdwards>) -> bool {
+    shear.is_some_and(|le| le.offset() != 0.0)
 }
 
 /// The 13 neighbour offsets of a half stencil: one of each pair `{d, -d}`, all with
@@ -209,8 +319,9 @@ fn wrap_cell(c: usize, d: isize, n: usize, length: f64) -> (usize, f64) {
 }
 
 /// Pairs grouped for the sweep order: `runs[k]..runs[k + 1]` is the k-th cell's run of
-/// pairs, `colours[c]..colours[c + 1]` the runs of colour `c`; runs of one colour are
-/// independent when `independent` is true.
+/// pairs, `colours[c]..colours[c + 1]` the runs of colour `c`. When `independent` is true the
+/// runs of each of the first [`COLOURS`] colours touch disjoint particles; runs of a further
+/// colour (the pairs across a sliding Lees-Edwards boundary) never count as independent.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Runs {
     pub runs: Vec<u32>,
@@ -223,6 +334,8 @@ pub struct Runs {
 pub struct VerletList {
     skin: f64,
     reference: Vec<Vec3>,
+    /// The sliding boundary at the last build (its offset fixed the sweep order).
+    shear: Option<LeesEdwards>,
     candidates: Vec<(u32, u32)>,
     groups: Runs,
     grid: CellGrid,
@@ -236,6 +349,7 @@ impl VerletList {
         VerletList {
             skin,
             reference: Vec::new(),
+            shear: None,
             candidates: Vec::new(),
             groups: Runs::default(),
             grid: CellGrid::default(),
@@ -258,17 +372,28 @@ impl VerletList {
         &self.reference
     }
 
+    /// The sliding boundary at the last build (`None` before the first or without shear).
+    pub fn reference_shear(&self) -> Option<&LeesEdwards> {
+        self.shear.as_ref()
+    }
+
     /// Rebuild if needed for positions `q` and cutoff `rc`; returns whether it rebuilt.
-    pub fn update(&mut self, q: &[Vec3], bx: &PeriodicBox, rc: f64) -> bool {
-        let rebuild = self.needs_rebuild(q, bx);
+    pub fn update(
+        &mut self,
+        q: &[Vec3],
+        bx: &PeriodicBox,
+        shear: Option<&LeesEdwards>,
+        rc: f64,
+    ) -> bool {
+        let rebuild = self.needs_rebuild(q, bx, shear);
         if rebuild {
-            self.rebuild(q, bx, rc);
+            self.rebuild(q, bx, shear, rc);
         }
         rebuild
     }
 
     /// Build the list for positions `q`, whatever they moved.
-    pub fn rebuild(&mut self, q: &[Vec3], bx: &PeriodicBox, rc: f64) {
+    pub fn rebuild(&mut self, q: &[Vec3], bx: &PeriodicBox, shear: Option<&LeesEdwards>, rc: f64) {
         let reach = rc + self.skin;
         self.grid.build(q, bx, reach);
         let mut by_colour: Vec<Vec<usize>> = vec![Vec::new(); COLOURS];
@@ -284,33 +409,67 @@ impl VerletList {
             for &c in cells {
                 let found = &mut self.candidates;
                 self.grid
-                    .for_each_pair_of_cell(c, bx, reach, |i, j, _| found.push((i, j)));
-                let end = self.candidates.len() as u32;
-                if end != *self.groups.runs.last().unwrap_or(&0) {
-                    self.groups.runs.push(end);
-                }
+                    .for_each_pair_of_cell(c, bx, shear, reach, |i, j, _| found.push((i, j)));
+                self.end_run();
             }
-            self.groups.colours.push(self.groups.runs.len() as u32 - 1);
+            self.end_colour();
+        }
+        if let Some(le) = shear.filter(|le| le.offset() != 0.0) {
+            for c in 0..self.grid.cells() {
+                if !self.grid.is_top_row(c) {
+                    continue;
+                }
+                let found = &mut self.candidates;
+                self.grid
+                    .for_each_sliding_pair_of_cell(c, bx, le, reach, |i, j, _| found.push((i, j)));
+                self.end_run();
+            }
+            self.end_colour();
         }
         self.groups.independent = self.grid.is_coloured();
         self.reference.clear();
         self.reference.extend_from_slice(q);
+        self.shear = shear.copied();
         self.built = true;
         self.builds += 1;
     }
 
-    /// Whether [`VerletList::update`] would rebuild for positions `q`.
-    pub fn needs_rebuild(&self, q: &[Vec3], bx: &PeriodicBox) -> bool {
-        !self.built || self.moved_too_far(q, bx)
+    /// Close the current cell's run, unless it is empty.
+    fn end_run(&mut self) {
+        let end = self.candidates.len() as u32;
+        if end != *self.groups.runs.last().unwrap_or(&0) {
+            self.groups.runs.push(end);
+        }
     }
 
-    fn moved_too_far(&self, q: &[Vec3], bx: &PeriodicBox) -> bool {
-        let limit = 0.25 * self.skin * self.skin;
-        q.len() != self.reference.len()
-            || q.iter().zip(&self.reference).any(|(a, b)| {
-                let d2 = bx.min_image(a - b).norm_squared();
-                d2 > limit || d2.is_nan()
-            })
+    /// Close the current colour.
+    fn end_colour(&mut self) {
+        self.groups.colours.push(self.groups.runs.len() as u32 - 1);
+    }
+
+    /// Whether [`VerletList::update`] would rebuild for positions `q`.
+    pub fn needs_rebuild(&self, q: &[Vec3], bx: &PeriodicBox, shear: Option<&LeesEdwards>) -> bool {
+        if !self.built || q.len() != self.reference.len() {
+            return true;
+        }
+        match (shear, &self.shear) {
+            (None, None) => self.moved_too_far(q, self.skin, |d| bx.min_image(d)),
+            (Some(now), Some(then)) => {
+                let reach = self.skin - 3.0 * (now.travel() - then.travel()).abs();
+                reach < 0.0 || self.moved_too_far(q, reach, |d| now.min_image(bx, d).0)
+            }
+            _ => true,
+        }
+    }
+
+    /// Whether a particle moved more than `reach / 2` since the last build, displacements
+    /// measured by `image`.
+    fn moved_too_far(&self, q: &[Vec3], reach: f64, image: impl Fn(Vec3) -> Vec3) -> bool {
+        let limit = 0.25 * reach * reach;
+        q.iter().zip(&self.reference).any(|(a, b)| {
+            let d2 = image(a - b).norm_squared();
+            d2 > limit || d2.is_nan()
+        })
     }
 
     /// Candidate pairs within `r_c + skin` at the last build, in sweep order.
@@ -327,13 +486,13 @@ impl VerletList {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use rand::{Rng, SeedableRng};
+    use crate::init::uniform_positions;
 
-    fn brute(q: &[Vec3], bx: &PeriodicBox, cut: f64) -> Vec<(u32, u32)> {
+    fn brute(q: &[Vec3], cut: f64, image: impl Fn(Vec3) -> Vec3) -> Vec<(u32, u32)> {
         let mut v = Vec::new();
         for i in 0..q.len() {
             for j in i + 1..q.len() {
-                if bx.min_image(q[i] - q[j]).norm() < cut {
+                if image(q[i] - q[j]).norm() < cut {
                     v.push((i as u32, j as u32));
                 }
             }
@@ -341,47 +500,78 @@ mod tests {
         v
     }
 
-    #[test]
-    fn verlet_list_matches_brute_force_and_colours_are_disjoint() {
-        let mut rng = rand::rngs::StdRng::seed_from_u64(1);
-        for (l, coloured) in [(2.5, false), (4.2, false), (7.0, true), (9.5, true)] {
-            let bx = PeriodicBox::new([l, l * 1.3, l * 0.9]).unwrap();
-            let q: Vec<Vec3> = (0..400)
-                .map(|_| {
-                    bx.wrap(Vec3::new(
-                        rng.random::<f64>() * l,
-                        rng.random::<f64>() * l * 1.3,
-                        rng.random::<f64>() * l * 0.9,
-                    ))
-                })
-                .collect();
-            let mut list = VerletList::new(0.3);
-            list.update(&q, &bx, 1.0);
-            let mut got: Vec<(u32, u32)> = list
-                .candidates()
-                .iter()
-                .map(|&(i, j)| (i.min(j), i.max(j)))
-                .collect();
-            got.sort_unstable();
-            assert_eq!(got, brute(&q, &bx, 1.3), "box {l}");
-            let g = list.groups();
-            assert_eq!(g.independent, coloured, "box {l}");
-            if g.independent {
-                for c in 0..COLOURS {
-                    let mut seen = std::collections::HashMap::new();
-                    for k in g.colours[c]..g.colours[c + 1] {
-                        let run = g.runs[k as usize]..g.runs[k as usize + 1];
-                        for &(i, j) in &list.candidates()[run.start as usize..run.end as usize] {
-                            for p in [i, j] {
-                                assert_eq!(
-                                    *seen.entry(p).or_insert(k),
-                                    k,
-                                    "particle {p} in two runs of colour {c}"
-                                );
-                            }
+    /// The list holds exactly the brute-force pairs, and runs of one of the first `COLOURS`
+    /// colours share no particle.
+    fn check_list(list: &VerletList, expected: Vec<(u32, u32)>, coloured: bool, what: &str) {
+        let mut got: Vec<(u32, u32)> = list
+            .candidates()
+            .iter()
+            .map(|&(i, j)| (i.min(j), i.max(j)))
+            .collect();
+        got.sort_unstable();
+        assert_eq!(got, expected, "{what}");
+        let g = list.groups();
+        assert_eq!(g.independent, coloured, "{what}");
+        if g.independent {
+            for c in 0..COLOURS {
+                let mut seen = std::collections::HashMap::new();
+                for k in g.colours[c]..g.colours[c + 1] {
+                    let run = g.runs[k as usize]..g.runs[k as usize + 1];
+                    for &(i, j) in &list.candidates()[run.start as usize..run.end as usize] {
+                        for p in [i, j] {
+                            assert_eq!(
+                                *seen.entry(p).or_insert(k),
+                                k,
+                                "{what}: particle {p} in two runs of colour {c}"
+                            );
                         }
                     }
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn verlet_list_matches_brute_force_and_colours_are_disjoint() {
+        for (l, coloured) in [(2.5, false), (4.2, false), (7.0, true), (9.5, true)] {
+            let bx = PeriodicBox::new([l, l * 1.3, l * 0.9]).unwrap();
+            let q = uniform_positions(&bx, 400, 1);
+            let mut list = VerletList::new(0.3);
+            list.update(&q, &bx, None, 1.0);
+            let expected = brute(&q, 1.3, |d| bx.min_image(d));
+            check_list(&list, expected, coloured, &format!("box {l}"));
+            assert_eq!(list.groups().colours.len(), COLOURS + 1);
+        }
+    }
+
+    #[test]
+    fn sliding_list_matches_brute_force() {
+        // Offsets aligned with the cells (0), slightly off, and arbitrary; grids of 3, 4 and
+        // more cells along x (3 and 4 are where the four image cells wrap around).
+        let boxes = [
+            ([2.5, 3.25, 2.25], false),
+            ([4.2, 4.5, 4.5], false),
+            ([5.3, 6.9, 4.8], true),
+            ([7.0, 9.1, 6.3], true),
+            ([9.5, 12.35, 8.55], true),
+        ];
+        for (lengths, coloured) in boxes {
+            let bx = PeriodicBox::new(lengths).unwrap();
+            let l = lengths[0];
+            let q = uniform_positions(&bx, 400, 2);
+            for offset in [0.0, 1e-9, 0.37 * l, 0.999 * l] {
+                let le = LeesEdwards::restore(0.3, offset, 0.0, &bx).unwrap();
+                let mut list = VerletList::new(0.3);
+                list.update(&q, &bx, Some(&le), 1.0);
+                let expected = brute(&q, 1.3, |d| le.min_image(&bx, d).0);
+                check_list(
+                    &list,
+                    expected,
+                    coloured,
+                    &format!("box {l}, offset {offset}"),
+                );
+                let colours = list.groups().colours.len() - 1;
+                assert_eq!(colours, COLOURS + usize::from(offset != 0.0));
             }
         }
     }
@@ -391,10 +581,26 @@ mod tests {
         let bx = PeriodicBox::cubic(5.0).unwrap();
         let mut q = vec![Vec3::new(1.0, 1.0, 1.0), Vec3::new(2.0, 1.0, 1.0)];
         let mut list = VerletList::new(0.4);
-        assert!(list.update(&q, &bx, 1.0));
+        assert!(list.update(&q, &bx, None, 1.0));
         q[0].x += 0.19;
-        assert!(!list.update(&q, &bx, 1.0));
+        assert!(!list.update(&q, &bx, None, 1.0));
         q[0].x += 0.02;
-        assert!(list.update(&q, &bx, 1.0));
+        assert!(list.update(&q, &bx, None, 1.0));
+    }
+
+    #[test]
+    fn sliding_images_shorten_the_rebuild_interval() {
+        // After the images slid by 0.1, the skin 0.4 leaves (0.4 - 0.3) / 2 = 0.05 of
+        // displacement.
+        let bx = PeriodicBox::cubic(5.0).unwrap();
+        let mut le = LeesEdwards::new(0.1).unwrap();
+        let mut q = vec![Vec3::new(1.0, 1.0, 1.0), Vec3::new(2.0, 1.0, 1.0)];
+        let mut list = VerletList::new(0.4);
+        assert!(list.update(&q, &bx, Some(&le), 1.0));
+        le.advance(&bx, 0.2);
+        q[0].x += 0.04;
+        assert!(!list.update(&q, &bx, Some(&le), 1.0));
+        q[0].x += 0.02;
+        assert!(list.update(&q, &bx, Some(&le), 1.0));
     }
 }

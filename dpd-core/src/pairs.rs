@@ -1,10 +1,10 @@
 //! The interacting pairs of the current positions, with the geometry every sub-flow needs,
 //! and the executor that visits them in the sweep order of [`crate::neighbour`].
 
-use crate::boundary::PeriodicBox;
-use crate::neighbour::{Runs, VerletList};
+use crate::boundary::{LeesEdwards, PeriodicBox};
+use crate::neighbour::{Runs, VerletList, COLOURS};
 use crate::params::Params;
-use crate::Vec3;
+use crate::{Tensor, Vec3};
 use dpd_ir::SweepOrder;
 use rayon::prelude::*;
 use std::marker::PhantomData;
@@ -22,6 +22,25 @@ pub struct Pair {
     pub w: f64,
     /// Random weight `w_R = w^(s/2)`; the dissipative weight is `w_R^2`.
     pub wr: f64,
+    /// x-velocity to add to `v_i - v_j`: across a sliding Lees-Edwards boundary the partner
+    /// of i is an image of j moving at `v_j - dvx` along x, so the dissipative and random
+    /// forces see `v_ij = v_i - v_j + (dvx, 0, 0)`. Zero for pairs that do not cross it, and
+    /// for every pair without shear.
+    pub dvx: f64,
+}
+
+impl Pair {
+    /// The pair's relative velocity along `e`, `e . (v_i - v_j + (dvx, 0, 0))`, with the shift
+    /// added only when `SHEARED` (a compile-time switch, so that periodic sweeps do not pay).
+    #[inline(always)]
+    pub fn normal_velocity<const SHEARED: bool>(&self, vi: Vec3, vj: Vec3) -> f64 {
+        let u = self.e.dot(&(vi - vj));
+        if SHEARED {
+            u + self.e.x * self.dvx
+        } else {
+            u
+        }
+    }
 }
 
 /// Below this many pairs a sweep is not worth splitting across threads.
@@ -59,7 +78,23 @@ impl PairTable {
         list: &VerletList,
         q: &[Vec3],
         bx: &PeriodicBox,
+        shear: Option<&LeesEdwards>,
         params: &Params,
+    ) {
+        match shear {
+            None => self.collect_with(list, q, params, |d| (bx.min_image(d), 0.0)),
+            Some(le) => self.collect_with(list, q, params, |d| le.min_image(bx, d)),
+        }
+    }
+
+    /// [`PairTable::collect`] with `image` giving the minimum image and the velocity shift.
+    #[inline(always)]
+    fn collect_with(
+        &mut self,
+        list: &VerletList,
+        q: &[Vec3],
+        params: &Params,
+        image: impl Fn(Vec3) -> (Vec3, f64),
     ) {
         let rc = params.rc();
         let rc2 = rc * rc;
@@ -70,7 +105,7 @@ impl PairTable {
         self.groups.runs.push(0);
         for run in from.runs.windows(2) {
             for &(i, j) in &list.candidates()[run[0] as usize..run[1] as usize] {
-                let d = bx.min_image(q[i as usize] - q[j as usize]);
+                let (d, dvx) = image(q[i as usize] - q[j as usize]);
                 let r2 = d.norm_squared();
                 if r2 < rc2 && r2 > 0.0 {
                     let r = r2.sqrt();
@@ -82,6 +117,7 @@ impl PairTable {
                         r,
                         w,
                         wr: params.w_r(w),
+                        dvx,
                     });
                 }
             }
@@ -96,33 +132,78 @@ impl PairTable {
     /// the table is large; they touch disjoint particles, so the result is the same as the
     /// sequential visit on any number of threads.
     pub(crate) fn visit(&self, order: SweepOrder, visit: impl Fn(&Pair) + Sync) {
+        self.visit_sum(order, visit)
+    }
+
+    /// [`PairTable::visit`], summing what `visit` returns: within a run in visiting order,
+    /// then run by run, then colour by colour, so the sum is the same on any number of threads.
+    /// With `T = ()` this is the plain visit at no cost.
+    pub(crate) fn visit_sum<T: Virial>(
+        &self,
+        order: SweepOrder,
+        visit: impl Fn(&Pair) -> T + Sync,
+    ) -> T {
         let g = &self.groups;
-        let run = |k: u32| {
+        let total = |items: &mut dyn Iterator<Item = T>| items.fold(T::default(), T::add);
+        let run = |k: u32| -> T {
             let pairs = &self.pairs[g.runs[k as usize] as usize..g.runs[k as usize + 1] as usize];
             match order {
-                SweepOrder::Forward => pairs.iter().for_each(&visit),
-                SweepOrder::Reverse => pairs.iter().rev().for_each(&visit),
+                SweepOrder::Forward => pairs.iter().fold(T::default(), |t, p| t.add(visit(p))),
+                SweepOrder::Reverse => pairs
+                    .iter()
+                    .rev()
+                    .fold(T::default(), |t, p| t.add(visit(p))),
             }
         };
         let parallel = g.independent
             && self.pairs.len() >= PARALLEL_MIN_PAIRS
             && rayon::current_num_threads() > 1;
         let colours = g.colours.len().saturating_sub(1);
-        for step in 0..colours {
-            let c = match order {
-                SweepOrder::Forward => step,
-                SweepOrder::Reverse => colours - 1 - step,
-            };
+        let colour = |c: usize| -> T {
             let runs = g.colours[c]..g.colours[c + 1];
-            if parallel {
-                runs.into_par_iter().for_each(run);
+            if parallel && c < COLOURS {
+                let sums: Vec<T> = runs.into_par_iter().map(run).collect();
+                match order {
+                    SweepOrder::Forward => total(&mut sums.into_iter()),
+                    SweepOrder::Reverse => total(&mut sums.into_iter().rev()),
+                }
             } else {
                 match order {
-                    SweepOrder::Forward => runs.for_each(run),
-                    SweepOrder::Reverse => runs.rev().for_each(run),
+                    SweepOrder::Forward => total(&mut runs.map(run)),
+                    SweepOrder::Reverse => total(&mut runs.rev().map(run)),
                 }
             }
+        };
+        match order {
+            SweepOrder::Forward => total(&mut (0..colours).map(colour)),
+            SweepOrder::Reverse => total(&mut (0..colours).rev().map(colour)),
         }
+    }
+}
+
+/// What a pairwise update records per pair and [`PairTable::visit_sum`] adds up: `()` (nothing,
+/// at no cost) or the pair virial tensor `r_ij f e_ij (x) e_ij = q_ij (x) (f e_ij)` of a force
+/// or impulse `f` along `e_ij`.
+pub(crate) trait Virial: Send + Default {
+    fn of(pair: &Pair, f: f64) -> Self;
+    fn add(self, other: Self) -> Self;
+}
+
+impl Virial for () {
+    #[inline(always)]
+    fn of(_: &Pair, _: f64) {}
+    #[inline(always)]
+    fn add(self, _: ()) {}
+}
+
+impl Virial for Tensor {
+    #[inline(always)]
+    fn of(pair: &Pair, f: f64) -> Self {
+        (pair.r * f) * pair.e * pair.e.transpose()
+    }
+    #[inline(always)]
+    fn add(self, other: Self) -> Self {
+        self + other
     }
 }
 

@@ -1,10 +1,12 @@
 //! The `Scheme` trait, the run-time interpreter of a stage sequence, and the guarded step
 //! that detects blow-ups.
 
+use crate::boundary::LeesEdwards;
 use crate::error::BlowUp;
 use crate::flow::{bbk, drift, full_force, kick, ou, trotter};
+use crate::observe::ImpulseVirial;
 use crate::system::System;
-use crate::Vec3;
+use crate::{Tensor, Vec3};
 use dpd_ir::{Diagnostic, Flow, Options, Program, Stage};
 
 /// An integrator: one step of length `sys.dt()`.
@@ -118,6 +120,9 @@ pub(crate) struct Backup {
     p: Vec<Vec3>,
     full: Vec<Vec3>,
     full_valid: bool,
+    full_virial: Option<Tensor>,
+    shear: Option<LeesEdwards>,
+    impulses: Option<ImpulseVirial>,
 }
 
 impl System {
@@ -143,6 +148,9 @@ impl System {
         if self.full_valid {
             backup.full.clone_from(&self.full);
         }
+        backup.full_virial = self.full_virial;
+        backup.shear = self.shear;
+        backup.impulses = self.impulses;
         self.drift_bound = 0.0;
         scheme.step(self);
         let reason = if !self.drift_bound.is_finite()
@@ -175,6 +183,9 @@ impl System {
                     std::mem::swap(&mut self.full, &mut backup.full);
                     self.full_valid = true;
                 }
+                self.full_virial = backup.full_virial;
+                self.shear = backup.shear;
+                self.impulses = backup.impulses;
                 Err(BlowUp {
                     step: self.step,
                     scheme: scheme.name().to_string(),

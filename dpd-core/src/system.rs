@@ -1,12 +1,13 @@
 //! The state of a DPD system and the caches that let sub-flows share evaluations.
 
-use crate::boundary::PeriodicBox;
+use crate::boundary::{LeesEdwards, PeriodicBox};
 use crate::error::{positive, ParamError};
 use crate::force;
 use crate::neighbour::VerletList;
+use crate::observe::ImpulseVirial;
 use crate::pairs::{Pair, PairTable};
 use crate::params::Params;
-use crate::Vec3;
+use crate::{Tensor, Vec3};
 
 /// Default Verlet skin in units of length.
 pub const DEFAULT_SKIN: f64 = 0.3;
@@ -21,8 +22,9 @@ pub struct Counters {
     pub force_evaluations: u64,
 }
 
-/// Positions, momenta, masses and types of N particles in a periodic box, the interaction
-/// parameters, the time step and the random-number key, plus evaluation caches.
+/// Positions, momenta, masses and types of N particles in a periodic box (optionally with
+/// Lees-Edwards sliding boundaries), the interaction parameters, the time step and the
+/// random-number key, plus evaluation caches.
 ///
 /// Caches are tied to the positions: the pair geometry, the conservative forces and the full
 /// forces (with their noise) are computed at most once per set of positions and are dropped by
@@ -32,6 +34,9 @@ pub struct Counters {
 #[derive(Clone, Debug)]
 pub struct System {
     pub(crate) bx: PeriodicBox,
+    /// Lees-Edwards boundaries; `None` is the plain periodic box, whose code paths never look
+    /// at shear.
+    pub(crate) shear: Option<LeesEdwards>,
     pub(crate) params: Params,
     pub(crate) q: Vec<Vec3>,
     pub(crate) p: Vec<Vec3>,
@@ -48,6 +53,12 @@ pub struct System {
     pub(crate) conservative_valid: bool,
     pub(crate) full: Vec<Vec3>,
     pub(crate) full_valid: bool,
+    /// Pair virial of the dissipative and random parts of `full`, when impulses were being
+    /// recorded as it was evaluated.
+    pub(crate) full_virial: Option<Tensor>,
+    /// Pair impulses of the dissipative and random forces being recorded for the stress
+    /// (`None`: not recording, and the sweeps do not pay for it).
+    pub(crate) impulses: Option<ImpulseVirial>,
     pub(crate) counters: Counters,
     /// Sum over this step's drifts of the largest single-particle drift length.
     pub(crate) drift_bound: f64,
@@ -66,6 +77,7 @@ pub struct SystemBuilder {
     dt: f64,
     seed: u64,
     skin: f64,
+    shear_rate: Option<f64>,
 }
 
 impl SystemBuilder {
@@ -94,6 +106,13 @@ impl SystemBuilder {
     }
     pub fn skin(mut self, skin: f64) -> Self {
         self.skin = skin;
+        self
+    }
+    /// Lees-Edwards boundaries with shear rate `kappa` (flow along x, gradient along y; see
+    /// [`LeesEdwards`]). Without this call the box is plain periodic; with `kappa = 0` the run
+    /// is bitwise the periodic one, through the sliding-boundary code.
+    pub fn shear_rate(mut self, kappa: f64) -> Self {
+        self.shear_rate = Some(kappa);
         self
     }
     pub fn build(self) -> Result<System, ParamError> {
@@ -174,12 +193,13 @@ impl SystemBuilder {
                 format!("every edge must be at least 2 (r_c + skin) = {} for the minimum-image convention", 2.0 * reach),
             ));
         }
+        let shear = self.shear_rate.map(LeesEdwards::new).transpose()?;
         let inv_mass = mass.iter().map(|m| 1.0 / m).collect();
-        let q = self.q.iter().map(|&x| self.bx.wrap(x)).collect();
-        Ok(System {
+        let mut sys = System {
             bx: self.bx,
+            shear,
             params: self.params,
-            q,
+            q: vec![Vec3::zeros(); n],
             p,
             mass,
             inv_mass,
@@ -194,10 +214,14 @@ impl SystemBuilder {
             conservative_valid: false,
             full: vec![Vec3::zeros(); n],
             full_valid: false,
+            full_virial: None,
+            impulses: None,
             counters: Counters::default(),
             drift_bound: 0.0,
             backup: Default::default(),
-        })
+        };
+        sys.place(&self.q);
+        Ok(sys)
     }
 }
 
@@ -214,6 +238,7 @@ impl System {
             dt: 0.01,
             seed: 0,
             skin: DEFAULT_SKIN,
+            shear_rate: None,
         }
     }
 
@@ -228,6 +253,10 @@ impl System {
     }
     pub fn boundary(&self) -> &PeriodicBox {
         &self.bx
+    }
+    /// The Lees-Edwards boundaries, if the box is sheared.
+    pub fn shear(&self) -> Option<&LeesEdwards> {
+        self.shear.as_ref()
     }
     pub fn positions(&self) -> &[Vec3] {
         &self.q
@@ -289,11 +318,30 @@ impl System {
                 ));
             }
         }
-        for (dst, &x) in self.q.iter_mut().zip(q) {
-            *dst = self.bx.wrap(x);
-        }
+        self.place(q);
         self.positions_changed();
         Ok(())
+    }
+
+    /// Set positions to `q` wrapped into the box; under Lees-Edwards a particle brought in
+    /// across the y boundary takes the image's x-velocity too (see [`LeesEdwards::wrap`]).
+    fn place(&mut self, q: &[Vec3]) {
+        match self.shear {
+            None => {
+                for (dst, &x) in self.q.iter_mut().zip(q) {
+                    *dst = self.bx.wrap(x);
+                }
+            }
+            Some(le) => {
+                let kick = le.image_velocity(&self.bx);
+                for (((dst, p), m), &x) in self.q.iter_mut().zip(&mut self.p).zip(&self.mass).zip(q)
+                {
+                    let (wrapped, n) = le.wrap(&self.bx, x);
+                    *dst = wrapped;
+                    p.x -= n * m * kick;
+                }
+            }
+        }
     }
 
     /// Drop every cache tied to the positions.
@@ -318,9 +366,10 @@ impl System {
 
     pub(crate) fn ensure_pairs(&mut self) {
         if !self.pairs_valid {
-            self.list.update(&self.q, &self.bx, self.params.rc());
+            let shear = self.shear.as_ref();
+            self.list.update(&self.q, &self.bx, shear, self.params.rc());
             self.pairs
-                .collect(&self.list, &self.q, &self.bx, &self.params);
+                .collect(&self.list, &self.q, &self.bx, shear, &self.params);
             self.pairs_valid = true;
             self.counters.pair_distance_evaluations += 1;
         }
@@ -334,14 +383,15 @@ impl System {
         &mut self,
         f: impl FnOnce(&System, &PairTable, &[Vec3]) -> R,
     ) -> R {
-        if self.pairs_valid || !self.list.needs_rebuild(&self.q, &self.bx) {
+        let shear = self.shear.as_ref();
+        if self.pairs_valid || !self.list.needs_rebuild(&self.q, &self.bx, shear) {
             self.ensure_conservative();
             return f(self, &self.pairs, &self.conservative);
         }
         let mut list = VerletList::new(0.0);
-        list.rebuild(&self.q, &self.bx, self.params.rc());
+        list.rebuild(&self.q, &self.bx, shear, self.params.rc());
         let mut pairs = PairTable::default();
-        pairs.collect(&list, &self.q, &self.bx, &self.params);
+        pairs.collect(&list, &self.q, &self.bx, shear, &self.params);
         let mut forces = vec![Vec3::zeros(); self.len()];
         force::conservative(&pairs, &self.params, &self.kind, &mut forces);
         f(self, &pairs, &forces)

@@ -17,11 +17,7 @@ fn trajectory_is_identical_for_any_thread_count() {
         let runs: Vec<System> = [1, 2, 3]
             .iter()
             .map(|&threads| {
-                let pool = rayon::ThreadPoolBuilder::new()
-                    .num_threads(threads)
-                    .build()
-                    .unwrap();
-                pool.install(|| {
+                common::with_threads(threads, || {
                     let mut sys = big_box();
                     sys.advance(scheme, 40).unwrap();
                     sys

@@ -1,50 +1,11 @@
 //! Every pairwise sub-flow conserves total momentum to rounding error.
 mod common;
 
-use dpd_core::flow::{bbk, drift, full_force, kick, ou, trotter};
-use dpd_core::{Params, Scheme, SweepOrder, System};
-
-struct Pairwise(&'static str, fn(&mut System));
-
-impl Scheme for Pairwise {
-    fn name(&self) -> &str {
-        self.0
-    }
-    fn step(&self, sys: &mut System) {
-        (self.1)(sys)
-    }
-}
+use dpd_core::{Params, System};
 
 #[test]
 fn pairwise_flows_conserve_momentum_over_1e4_steps() {
-    let flows = [
-        Pairwise("B", |s| {
-            let h = s.dt();
-            kick(s, h);
-            drift(s, h)
-        }),
-        Pairwise("O", |s| {
-            let h = s.dt();
-            ou(s, h, 0, SweepOrder::Forward);
-            drift(s, h)
-        }),
-        Pairwise("O-BBK", |s| {
-            let h = s.dt();
-            bbk(s, h, 0, SweepOrder::Reverse);
-            drift(s, h)
-        }),
-        Pairwise("T", |s| {
-            let h = s.dt();
-            trotter(s, h, 0, SweepOrder::Forward);
-            drift(s, h)
-        }),
-        Pairwise("F", |s| {
-            let h = s.dt();
-            full_force(s, h, 0);
-            drift(s, h)
-        }),
-    ];
-    for flow in flows {
+    for flow in common::pairwise_flows() {
         // A small box with unequal masses and two types, so that nothing cancels by symmetry.
         let sys = common::system(
             120,

@@ -15,9 +15,15 @@ pub fn kick(sys: &mut System, h: f64) {
 /// current step, unless an evaluation at the current positions exists: then that one is reused
 /// (velocity Verlet / Groot-Warren reuse the end-of-step forces for the next half-kick; the PRK
 /// schemes give all their F stages one stream, so the noise is frozen within the step).
+///
+/// When pair impulses are being recorded for the stress, the kick adds `h` times the
+/// dissipative and random pair virial of the evaluation it uses.
 pub fn full_force(sys: &mut System, h: f64, stream: u8) {
     sys.ensure_full(stream);
     for (p, f) in sys.p.iter_mut().zip(&sys.full) {
         *p += h * f;
+    }
+    if let Some(impulses) = &mut sys.impulses {
+        impulses.add_kick(h, sys.full_virial.as_ref());
     }
 }

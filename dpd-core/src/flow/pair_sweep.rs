@@ -1,10 +1,12 @@
-use crate::pairs::{Disjoint, Pair};
+use crate::pairs::{Disjoint, Pair, Virial};
 use crate::rng::pair_normal;
 use crate::system::System;
+use crate::Tensor;
 use dpd_ir::SweepOrder;
 
-/// What a pair update sees: relative normal velocity `u = e . (v_i - v_j)`, inverse reduced
-/// mass `mu = 1/m_i + 1/m_j`, the pair, its repulsion `a_ij` and one standard normal `r`.
+/// What a pair update sees: relative normal velocity `u = e . v_ij` (with the image velocity
+/// across a sliding boundary), inverse reduced mass `mu = 1/m_i + 1/m_j`, the pair, its
+/// repulsion `a_ij` and one standard normal `r`.
 struct PairState<'a> {
     u: f64,
     mu: f64,
@@ -15,14 +17,57 @@ struct PairState<'a> {
 
 /// Visit the interacting pairs successively in `order`; `update` returns the change `du` of
 /// the pair's relative normal velocity, applied as `p_i += du/mu e`, `p_j -= du/mu e`.
+///
+/// When the system records pair impulses for the stress, the dissipative and random part of
+/// each pair's impulse, `du/mu - a_ij w h_c` (`h_c`: the step over which the update also applies
+/// the conservative force, 0 for O and O-BBK, `h` for T), is added as a virial. The shear and
+/// recording switches are resolved here, once per sweep, not per pair.
 #[inline(always)]
 fn sweep(
     sys: &mut System,
     stream: u8,
     order: SweepOrder,
+    conservative_h: f64,
     update: impl Fn(&PairState) -> f64 + Sync,
 ) {
     sys.ensure_pairs();
+    let recorded = match (sys.shear.is_some(), sys.impulses.is_some()) {
+        (false, false) => {
+            sweep_with::<false, ()>(sys, stream, order, conservative_h, update);
+            None
+        }
+        (true, false) => {
+            sweep_with::<true, ()>(sys, stream, order, conservative_h, update);
+            None
+        }
+        (false, true) => Some(sweep_with::<false, Tensor>(
+            sys,
+            stream,
+            order,
+            conservative_h,
+            update,
+        )),
+        (true, true) => Some(sweep_with::<true, Tensor>(
+            sys,
+            stream,
+            order,
+            conservative_h,
+            update,
+        )),
+    };
+    if let (Some(impulses), Some(virial)) = (&mut sys.impulses, recorded) {
+        impulses.add(virial);
+    }
+}
+
+#[inline(always)]
+fn sweep_with<const SHEARED: bool, V: Virial>(
+    sys: &mut System,
+    stream: u8,
+    order: SweepOrder,
+    conservative_h: f64,
+    update: impl Fn(&PairState) -> f64 + Sync,
+) -> V {
     let System {
         ref pairs,
         ref mut p,
@@ -35,14 +80,14 @@ fn sweep(
     } = *sys;
     let noisy = params.sigma() > 0.0;
     let p = Disjoint::new(p);
-    pairs.visit(order, |pair| {
+    pairs.visit_sum(order, |pair| {
         let (i, j) = (pair.i as usize, pair.j as usize);
         // SAFETY: `visit` never hands two pairs sharing a particle to different threads, and
         // the two references below are to distinct particles (i != j).
         let (pi, pj) = unsafe { (p.get(i), p.get(j)) };
         let mu = inv_mass[i] + inv_mass[j];
         let state = PairState {
-            u: pair.e.dot(&(*pi * inv_mass[i] - *pj * inv_mass[j])),
+            u: pair.normal_velocity::<SHEARED>(*pi * inv_mass[i], *pj * inv_mass[j]),
             mu,
             pair,
             a: params.a(kind[i], kind[j]),
@@ -52,10 +97,12 @@ fn sweep(
                 0.0
             },
         };
-        let dp = (update(&state) / mu) * pair.e;
+        let impulse = update(&state) / mu;
+        let dp = impulse * pair.e;
         *pi += dp;
         *pj -= dp;
-    });
+        V::of(pair, impulse - state.a * pair.w * conservative_h)
+    })
 }
 
 /// Standard deviation of the exact OU noise over a step with `x = tau h`, given
@@ -75,7 +122,7 @@ pub fn ou(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
     if gamma == 0.0 {
         return;
     }
-    sweep(sys, stream, order, |s| {
+    sweep(sys, stream, order, 0.0, |s| {
         let em1 = (-gamma * s.pair.wr * s.pair.wr * s.mu * h).exp_m1();
         s.u * em1 + ou_std(kbt, s.mu, em1) * s.r
     });
@@ -90,7 +137,7 @@ pub fn bbk(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
         return;
     }
     let root_h = h.max(0.0).sqrt();
-    sweep(sys, stream, order, |s| {
+    sweep(sys, stream, order, 0.0, |s| {
         let half_tau_h = 0.5 * gamma * s.pair.wr * s.pair.wr * s.mu * h;
         let kick = 0.5 * sigma * s.pair.wr * s.mu * root_h * s.r;
         let u_half = s.u - half_tau_h * s.u + kick;
@@ -104,7 +151,7 @@ pub fn bbk(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
 pub fn trotter(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
     let (gamma, kbt) = (sys.params.gamma(), sys.params.kbt());
     sys.counters.force_evaluations += 1;
-    sweep(sys, stream, order, |s| {
+    sweep(sys, stream, order, h, |s| {
         let x = gamma * s.pair.wr * s.pair.wr * s.mu * h;
         let em1 = (-x).exp_m1();
         let phi1 = if x == 0.0 { 1.0 } else { -em1 / x };

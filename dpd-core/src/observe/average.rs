@@ -38,6 +38,22 @@ impl Running {
     }
 }
 
+/// Mean of a time series and its standard error from `blocks` consecutive blocks of equal
+/// length: `sd(block means) / sqrt(blocks)`, valid when a block is much longer than the
+/// correlation time of the series. The first `len % blocks` values are left out so that the
+/// blocks are equal. `None` with fewer than `blocks` values or fewer than 2 blocks.
+pub fn block_mean(values: &[f64], blocks: usize) -> Option<(f64, f64)> {
+    if blocks < 2 || values.len() < blocks {
+        return None;
+    }
+    let len = values.len() / blocks;
+    let mut means = Running::default();
+    for block in values[values.len() % blocks..].chunks_exact(len) {
+        means.push(block.iter().sum::<f64>() / len as f64);
+    }
+    Some((means.mean(), (means.variance() / blocks as f64).sqrt()))
+}
+
 /// Averages of [`Thermo`] samples over the last `fraction` of a run of `total_steps` steps.
 #[derive(Clone, Debug)]
 pub struct ThermoAverages {
@@ -121,6 +137,17 @@ mod tests {
         xs.iter().for_each(|&x| r.push(x));
         assert_eq!(r.mean(), 11.0);
         approx::assert_relative_eq!(r.variance(), 93.5);
+    }
+
+    #[test]
+    fn block_error_of_independent_blocks() {
+        // Blocks with means 1, 2, 3, 4 (two values each): mean 2.5, sd of means sqrt(5/3),
+        // standard error sqrt(5/3) / 2.
+        let values = [9.0, 0.5, 1.5, 2.0, 2.0, 2.5, 3.5, 4.0, 4.0];
+        let (mean, error) = block_mean(&values, 4).unwrap();
+        assert_eq!(mean, 2.5);
+        approx::assert_relative_eq!(error, (5.0f64 / 3.0).sqrt() / 2.0);
+        assert_eq!(block_mean(&values[..3], 4), None);
     }
 
     #[test]

@@ -5,11 +5,18 @@
 //! it never changes the trajectory.
 
 mod average;
+mod profile;
 mod rdf;
+mod stress;
 mod thermo;
 mod vacf;
 
-pub use average::{Running, ThermoAverages, ThermoSummary};
+pub use average::{block_mean, Running, ThermoAverages, ThermoSummary};
+pub use profile::{fit_line, Profile, ProfileRow};
 pub use rdf::Rdf;
+pub(crate) use stress::ImpulseVirial;
+pub use stress::{
+    stop_recording, stress, ShearViscosity, Stress, ViscositySummary, VISCOSITY_BLOCKS,
+};
 pub use thermo::{kinetic_temperature, thermo, Thermo};
 pub use vacf::Vacf;

@@ -24,14 +24,23 @@ impl Thermo {
 }
 
 /// `k_B T_K = sum_i p_i . p_i / m_i / (3 (N - 1))`: the total momentum is conserved, so N - 1
-/// particles' worth of degrees of freedom are free.
+/// particles' worth of degrees of freedom are free. Under shear, of the velocities relative to
+/// the streaming profile ([`System::peculiar_velocities`]).
 pub fn kinetic_temperature(sys: &System) -> f64 {
-    let twice_ke: f64 = sys
-        .p
-        .iter()
-        .zip(&sys.inv_mass)
-        .map(|(p, im)| p.norm_squared() * im)
-        .sum();
+    let twice_ke: f64 = match sys.shear {
+        None => sys
+            .p
+            .iter()
+            .zip(&sys.inv_mass)
+            .map(|(p, im)| p.norm_squared() * im)
+            .sum(),
+        Some(_) => sys
+            .peculiar_velocities()
+            .iter()
+            .zip(&sys.mass)
+            .map(|(v, m)| m * v.norm_squared())
+            .sum(),
+    };
     twice_ke / (3.0 * (sys.len() as f64 - 1.0))
 }
 

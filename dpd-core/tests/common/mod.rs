@@ -1,9 +1,10 @@
 //! Shared set-up of the core's integration tests.
 #![allow(dead_code)]
 
+use dpd_core::flow::{bbk, drift, full_force, kick, ou, trotter};
 use dpd_core::init::{cubic_box, maxwell_momenta, uniform_positions};
 use dpd_core::params::ParamsBuilder;
-use dpd_core::{Params, System};
+use dpd_core::{Params, Scheme, SweepOrder, System};
 
 /// A system of `n` unit-mass particles at `density` with the given parameters, Maxwell
 /// momenta and uniform positions.
@@ -36,4 +37,56 @@ pub fn same_bits(a: &System, b: &System) -> bool {
             .collect()
     };
     bits(a) == bits(b)
+}
+
+/// A step made of plain sub-flow calls, named for messages.
+pub struct Steps(pub &'static str, pub fn(&mut System));
+
+impl Scheme for Steps {
+    fn name(&self) -> &str {
+        self.0
+    }
+    fn step(&self, sys: &mut System) {
+        (self.1)(sys)
+    }
+}
+
+/// Each pairwise sub-flow (B, O, O-BBK, T, F) followed by a drift, each with step `dt`.
+pub fn pairwise_flows() -> [Steps; 5] {
+    [
+        Steps("B", |s| {
+            let h = s.dt();
+            kick(s, h);
+            drift(s, h)
+        }),
+        Steps("O", |s| {
+            let h = s.dt();
+            ou(s, h, 0, SweepOrder::Forward);
+            drift(s, h)
+        }),
+        Steps("O-BBK", |s| {
+            let h = s.dt();
+            bbk(s, h, 0, SweepOrder::Reverse);
+            drift(s, h)
+        }),
+        Steps("T", |s| {
+            let h = s.dt();
+            trotter(s, h, 0, SweepOrder::Forward);
+            drift(s, h)
+        }),
+        Steps("F", |s| {
+            let h = s.dt();
+            full_force(s, h, 0);
+            drift(s, h)
+        }),
+    ]
+}
+
+/// `f()` run on a pool of `threads` worker threads.
+pub fn with_threads<R: Send>(threads: usize, f: impl FnOnce() -> R + Send) -> R {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap()
+        .install(f)
 }
