@@ -6,7 +6,7 @@ use dpd_core::observe::{thermo, Rdf, ThermoAverages, Vacf};
 use dpd_core::{ParamError, Scheme};
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
@@ -168,20 +168,21 @@ pub fn run(
     })
 }
 
-/// Run `f` on a pool of `threads` rayon threads (0: one per core), which the core's pair loops
-/// then use.
-pub fn on_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> Result<T, ParamError> {
-    let pool = rayon::ThreadPoolBuilder::new()
+/// A pool of `threads` rayon threads (0: one per core) for the core's pair loops.
+fn pool(threads: usize) -> Result<rayon::ThreadPool, ParamError> {
+    rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
-        .map_err(|e| ParamError::new("threads", threads, e.to_string()))?;
-    Ok(pool.install(f))
+        .map_err(|e| ParamError::new("threads", threads, e.to_string()))
 }
 
 /// Run `jobs` with the schemes of `schemes` (by `job.scheme`), in order of the list, on
-/// `scene.threads` workers: independent jobs in parallel, each single-threaded, or a single
-/// job on all workers. Every result, also of interrupted runs, goes to `on_result`; the first
-/// invalid input stops the others and is returned.
+/// `scene.threads` workers (0: one per core): independent jobs in parallel, each on its
+/// worker's own one-thread rayon pool, or a single job on a pool of all workers. Workers are
+/// plain threads, not rayon workers: a rayon worker waiting for another pool would run other
+/// jobs meanwhile, and their time would count as the waiting job's. Every result, also of
+/// interrupted runs, goes to `on_result`; the first invalid input stops the others and is
+/// returned.
 pub fn run_parallel(
     scene: &Scene,
     jobs: &[Job],
@@ -189,28 +190,44 @@ pub fn run_parallel(
     control: Control,
     on_result: &(dyn Fn(RunResult) + Sync),
 ) -> Result<(), ParamError> {
-    let inner = if jobs.len() == 1 { scene.threads } else { 1 };
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let threads = if scene.threads == 0 {
+        cores
+    } else {
+        scene.threads
+    };
+    let (workers, inner) = match jobs.len() {
+        1 => (1, threads),
+        n => (threads.min(n), 1),
+    };
+    let next = AtomicUsize::new(0);
     let first_error = Mutex::new(None);
-    on_threads(scene.threads, || {
-        rayon::scope_fifo(|s| {
-            for job in jobs {
-                let first_error = &first_error;
-                s.spawn_fifo(move |_| {
+    let fail = |e: ParamError| {
+        control.stop.store(true, Ordering::Relaxed);
+        lock(&first_error).get_or_insert(e);
+    };
+    std::thread::scope(|s| {
+        for _ in 0..workers {
+            s.spawn(|| {
+                let pool = match pool(inner) {
+                    Ok(pool) => pool,
+                    Err(e) => return fail(e),
+                };
+                while let Some(job) = jobs.get(next.fetch_add(1, Ordering::Relaxed)) {
                     if control.stop.load(Ordering::Relaxed) {
                         return;
                     }
-                    let scheme = &schemes[&job.scheme];
-                    match on_threads(inner, || run(scene, job, scheme, control)).and_then(|r| r) {
+                    let Some(scheme) = schemes.get(&job.scheme) else {
+                        return fail(ParamError::new("scheme", &job.scheme, "was not resolved"));
+                    };
+                    match pool.install(|| run(scene, job, scheme, control)) {
                         Ok(r) => on_result(r),
-                        Err(e) => {
-                            control.stop.store(true, Ordering::Relaxed);
-                            lock(first_error).get_or_insert(e);
-                        }
+                        Err(e) => return fail(e),
                     }
-                });
-            }
-        })
-    })?;
+                }
+            });
+        }
+    });
     match first_error.into_inner().unwrap_or_else(|e| e.into_inner()) {
         Some(e) => Err(e),
         None => Ok(()),
