@@ -2,7 +2,7 @@
 //!
 //! A checkpoint holds everything a step depends on: box, parameters, time step, random key,
 //! step counter, positions, momenta, masses, types, neighbour skin, the Lees-Edwards state
-//! (shear rate, offset, travel), the positions and the Lees-Edwards state of the last
+//! (shear rate, offset, travel), the walls with their frozen particles, the body force, the positions and the Lees-Edwards state of the last
 //! neighbour-list build (which fix the sweep order and the next rebuild), the name of the
 //! scheme, and what a scheme carries between steps (the full forces of velocity Verlet, with
 //! their noise). Pair geometry and conservative forces are not stored: they are pure functions
@@ -18,13 +18,14 @@ use crate::boundary::{LeesEdwards, PeriodicBox};
 use crate::error::CheckpointError;
 use crate::params::Params;
 use crate::system::System;
+use crate::walls::Walls;
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
 use std::io::Write;
 use std::path::Path;
 
 const MAGIC: &[u8; 8] = b"DPDCHKPT";
-const VERSION: u32 = 3;
+const VERSION: u32 = 4;
 const HEADER: usize = 8 + 4 + 8 + 4;
 
 #[derive(Serialize, Deserialize)]
@@ -47,6 +48,9 @@ struct Payload {
     /// Lees-Edwards `[rate, offset, travel]`, now and at the last neighbour-list build.
     shear: Option<[f64; 3]>,
     list_shear: Option<[f64; 3]>,
+    /// Walls `[lower, upper, velocity lower, velocity upper]` and the frozen particles.
+    walls: Option<([f64; 4], Vec<bool>)>,
+    body_force: Option<Vec3>,
 }
 
 fn shear_state(le: Option<&LeesEdwards>) -> Option<[f64; 3]> {
@@ -85,6 +89,11 @@ impl System {
             list_reference: self.list.reference().to_vec(),
             shear: shear_state(self.shear.as_ref()),
             list_shear: shear_state(self.list.reference_shear()),
+            walls: self.walls.as_ref().map(|w| {
+                let [v0, v1] = w.walls.velocity();
+                ([w.walls.lower(), w.walls.upper(), v0, v1], w.frozen.clone())
+            }),
+            body_force: self.body_force,
         };
         let data = bincode::serialize(&payload).map_err(|e| CheckpointError::Decode {
             path: path.display().to_string(),
@@ -159,15 +168,21 @@ impl System {
         };
         let shear = restore_shear(payload.shear, &payload.bx).map_err(invalid)?;
         let list_shear = restore_shear(payload.list_shear, &payload.bx).map_err(invalid)?;
-        let mut sys = System::builder(payload.params, payload.bx, payload.q)
+        let mut builder = System::builder(payload.params, payload.bx, payload.q)
             .momenta(payload.p)
             .masses(payload.mass)
             .kinds(payload.kind)
             .dt(payload.dt)
             .seed(payload.seed)
-            .skin(payload.skin)
-            .build()
-            .map_err(invalid)?;
+            .skin(payload.skin);
+        if let Some(([lower, upper, v0, v1], frozen)) = payload.walls {
+            let walls = Walls::new(lower, upper, [v0, v1]).map_err(invalid)?;
+            builder = builder.walls(walls).frozen(frozen);
+        }
+        if let Some(g) = payload.body_force {
+            builder = builder.body_force(g);
+        }
+        let mut sys = builder.build().map_err(invalid)?;
         // The saved positions are inside the box, so the builder moved no particle across the
         // sliding boundary; the saved offset is restored as it was.
         sys.shear = shear;

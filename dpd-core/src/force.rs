@@ -24,12 +24,12 @@ pub(crate) fn conservative(pairs: &PairTable, params: &Params, kind: &[u16], out
 
 /// Full DPD force at the current momenta into `sys.full`:
 /// `sum_j [a w - gamma w_R^2 (e . v_ij) + sigma w_R zeta_ij / sqrt(dt)] e_ij`,
-/// with `zeta_ij` the pair normal of `stream` in the current step and `v_ij` including the image
-/// velocity across a sliding boundary. Multiplied by a step `h` this is the F kick of
+/// with `zeta_ij` the pair normal of `stream` in the current step and `v_ij` including the pair's
+/// velocity shift (image velocity across a sliding boundary, wall velocity of frozen particles). Multiplied by a step `h` this is the F kick of
 /// algorithms.md section 2. When pair impulses are being recorded, the pair virial of the
 /// dissipative and random parts goes to `sys.full_virial`.
 pub(crate) fn full(sys: &mut System, stream: u8) {
-    sys.full_virial = match (sys.shear.is_some(), sys.impulses.is_some()) {
+    sys.full_virial = match (sys.shifted_pairs(), sys.impulses.is_some()) {
         (false, false) => {
             full_with::<false, ()>(sys, stream);
             None
@@ -44,7 +44,7 @@ pub(crate) fn full(sys: &mut System, stream: u8) {
 }
 
 #[inline(always)]
-fn full_with<const SHEARED: bool, V: Virial>(sys: &mut System, stream: u8) -> V {
+fn full_with<const SHIFTED: bool, V: Virial>(sys: &mut System, stream: u8) -> V {
     let System {
         ref pairs,
         ref p,
@@ -63,7 +63,7 @@ fn full_with<const SHEARED: bool, V: Virial>(sys: &mut System, stream: u8) -> V 
     let noise = params.sigma() / dt.sqrt();
     pairs.visit_sum(SweepOrder::Forward, |pair| {
         let (i, j) = (pair.i as usize, pair.j as usize);
-        let u = pair.normal_velocity::<SHEARED>(p[i] * inv_mass[i], p[j] * inv_mass[j]);
+        let u = pair.normal_velocity::<SHIFTED>(p[i] * inv_mass[i], p[j] * inv_mass[j]);
         let conservative = params.a(kind[i], kind[j]) * pair.w;
         let mut f = conservative - gamma * pair.wr * pair.wr * u;
         if noise > 0.0 {

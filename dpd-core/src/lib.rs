@@ -28,6 +28,7 @@ pub mod reference;
 pub mod rng;
 pub mod scheme;
 pub mod system;
+pub mod walls;
 
 #[doc(hidden)]
 pub mod __private;
@@ -38,6 +39,7 @@ pub use error::{BlowUp, CheckpointError, ParamError};
 pub use params::Params;
 pub use scheme::{DynScheme, Scheme};
 pub use system::{System, SystemBuilder};
+pub use walls::Walls;
 
 /// Three-vector of `f64`, the type of positions, momenta and forces.
 pub type Vec3 = nalgebra::Vector3<f64>;

@@ -4,6 +4,7 @@
 use crate::boundary::{LeesEdwards, PeriodicBox};
 use crate::neighbour::{Runs, VerletList, COLOURS};
 use crate::params::Params;
+use crate::walls::FrozenWalls;
 use crate::{Tensor, Vec3};
 use dpd_ir::SweepOrder;
 use rayon::prelude::*;
@@ -23,19 +24,19 @@ pub struct Pair {
     /// Random weight `w_R = w^(s/2)`; the dissipative weight is `w_R^2`.
     pub wr: f64,
     /// x-velocity to add to `v_i - v_j`: across a sliding Lees-Edwards boundary the partner
-    /// of i is an image of j moving at `v_j - dvx` along x, so the dissipative and random
-    /// forces see `v_ij = v_i - v_j + (dvx, 0, 0)`. Zero for pairs that do not cross it, and
-    /// for every pair without shear.
+    /// of i is an image of j moving at `v_j - dvx` along x, and a frozen wall particle moves
+    /// with its wall (`v_i - v_j` sees it at rest), so the dissipative and random forces see
+    /// `v_ij = v_i - v_j + (dvx, 0, 0)`. Zero for every other pair.
     pub dvx: f64,
 }
 
 impl Pair {
     /// The pair's relative velocity along `e`, `e . (v_i - v_j + (dvx, 0, 0))`, with the shift
-    /// added only when `SHEARED` (a compile-time switch, so that periodic sweeps do not pay).
+    /// added only when `SHIFTED` (a compile-time switch, so that periodic sweeps do not pay).
     #[inline(always)]
-    pub fn normal_velocity<const SHEARED: bool>(&self, vi: Vec3, vj: Vec3) -> f64 {
+    pub fn normal_velocity<const SHIFTED: bool>(&self, vi: Vec3, vj: Vec3) -> f64 {
         let u = self.e.dot(&(vi - vj));
-        if SHEARED {
+        if SHIFTED {
             u + self.e.x * self.dvx
         } else {
             u
@@ -79,22 +80,33 @@ impl PairTable {
         q: &[Vec3],
         bx: &PeriodicBox,
         shear: Option<&LeesEdwards>,
+        walls: Option<&FrozenWalls>,
         params: &Params,
     ) {
-        match shear {
-            None => self.collect_with(list, q, params, |d| (bx.min_image(d), 0.0)),
-            Some(le) => self.collect_with(list, q, params, |d| le.min_image(bx, d)),
+        match (shear, walls) {
+            (None, None) => {
+                self.collect_with(list, q, params, |_, _, d| Some((bx.min_image(d), 0.0)))
+            }
+            (Some(le), _) => {
+                self.collect_with(list, q, params, |_, _, d| Some(le.min_image(bx, d)))
+            }
+            (None, Some(w)) => self.collect_with(list, q, params, |i, j, d| {
+                let (i, j) = (i as usize, j as usize);
+                (!(w.frozen[i] && w.frozen[j]))
+                    .then(|| (bx.min_image(d), w.velocity_x[i] - w.velocity_x[j]))
+            }),
         }
     }
 
-    /// [`PairTable::collect`] with `image` giving the minimum image and the velocity shift.
+    /// [`PairTable::collect`] with `image(i, j, q_i - q_j)` giving the minimum image and the
+    /// velocity shift, or `None` for a pair that does not interact (two frozen particles).
     #[inline(always)]
     fn collect_with(
         &mut self,
         list: &VerletList,
         q: &[Vec3],
         params: &Params,
-        image: impl Fn(Vec3) -> (Vec3, f64),
+        image: impl Fn(u32, u32, Vec3) -> Option<(Vec3, f64)>,
     ) {
         let rc = params.rc();
         let rc2 = rc * rc;
@@ -105,7 +117,9 @@ impl PairTable {
         self.groups.runs.push(0);
         for run in from.runs.windows(2) {
             for &(i, j) in &list.candidates()[run[0] as usize..run[1] as usize] {
-                let (d, dvx) = image(q[i as usize] - q[j as usize]);
+                let Some((d, dvx)) = image(i, j, q[i as usize] - q[j as usize]) else {
+                    continue;
+                };
                 let r2 = d.norm_squared();
                 if r2 < rc2 && r2 > 0.0 {
                     let r = r2.sqrt();

@@ -7,6 +7,7 @@ use crate::neighbour::VerletList;
 use crate::observe::ImpulseVirial;
 use crate::pairs::{Pair, PairTable};
 use crate::params::Params;
+use crate::walls::{FrozenWalls, Walls};
 use crate::{Tensor, Vec3};
 
 /// Default Verlet skin in units of length.
@@ -37,6 +38,12 @@ pub struct System {
     /// Lees-Edwards boundaries; `None` is the plain periodic box, whose code paths never look
     /// at shear.
     pub(crate) shear: Option<LeesEdwards>,
+    /// Walls across z with their frozen particles; `None`: no walls, and no code path looks
+    /// at them.
+    pub(crate) walls: Option<FrozenWalls>,
+    /// External force on every mobile particle (Poiseuille flow), added to the conservative
+    /// and full forces.
+    pub(crate) body_force: Option<Vec3>,
     pub(crate) params: Params,
     pub(crate) q: Vec<Vec3>,
     pub(crate) p: Vec<Vec3>,
@@ -78,6 +85,9 @@ pub struct SystemBuilder {
     seed: u64,
     skin: f64,
     shear_rate: Option<f64>,
+    walls: Option<Walls>,
+    frozen: Option<Vec<bool>>,
+    body_force: Option<Vec3>,
 }
 
 impl SystemBuilder {
@@ -113,6 +123,23 @@ impl SystemBuilder {
     /// is bitwise the periodic one, through the sliding-boundary code.
     pub fn shear_rate(mut self, kappa: f64) -> Self {
         self.shear_rate = Some(kappa);
+        self
+    }
+    /// Walls across z bounding the channel `lower <= z <= upper` (see [`crate::walls`]); mobile
+    /// particles must start inside it.
+    pub fn walls(mut self, walls: Walls) -> Self {
+        self.walls = Some(walls);
+        self
+    }
+    /// Which particles are frozen wall particles (default: none); needs [`Self::walls`].
+    pub fn frozen(mut self, frozen: Vec<bool>) -> Self {
+        self.frozen = Some(frozen);
+        self
+    }
+    /// A constant external force on every mobile particle (force units), e.g. the driving of
+    /// Poiseuille flow. It enters the B and F kicks and the T sweeps (after the pair updates).
+    pub fn body_force(mut self, force: Vec3) -> Self {
+        self.body_force = Some(force);
         self
     }
     pub fn build(self) -> Result<System, ParamError> {
@@ -194,10 +221,59 @@ impl SystemBuilder {
             ));
         }
         let shear = self.shear_rate.map(LeesEdwards::new).transpose()?;
-        let inv_mass = mass.iter().map(|m| 1.0 / m).collect();
+        if let Some(g) = self.body_force {
+            if !g.iter().all(|x| x.is_finite()) {
+                return Err(ParamError::new(
+                    "body_force",
+                    format!("{g:?}"),
+                    "must be finite",
+                ));
+            }
+        }
+        let walls = match (self.walls, self.frozen) {
+            (None, None) => None,
+            (None, Some(_)) => {
+                return Err(ParamError::new(
+                    "frozen",
+                    "frozen particles without walls",
+                    "frozen particles belong to walls: set the walls too",
+                ))
+            }
+            (Some(w), frozen) => {
+                if shear.is_some() {
+                    return Err(ParamError::new(
+                        "shear_rate",
+                        self.shear_rate.unwrap_or_default(),
+                        "Lees-Edwards shear needs a box periodic along z; it cannot be combined \
+                         with walls (drive wall-bounded shear by moving the walls instead)",
+                    ));
+                }
+                w.check(&self.bx, self.params.rc())?;
+                let frozen = frozen.unwrap_or_else(|| vec![false; n]);
+                if frozen.len() != n {
+                    return Err(ParamError::new(
+                        "frozen",
+                        format!("{} entries", frozen.len()),
+                        format!("must have one entry per particle ({n})"),
+                    ));
+                }
+                let q: Vec<Vec3> = self.q.iter().map(|&x| self.bx.wrap(x)).collect();
+                Some(FrozenWalls::new(w, frozen, &q)?)
+            }
+        };
+        let inv_mass = match &walls {
+            None => mass.iter().map(|m| 1.0 / m).collect(),
+            Some(w) => mass
+                .iter()
+                .zip(&w.frozen)
+                .map(|(m, &f)| if f { 0.0 } else { 1.0 / m })
+                .collect(),
+        };
         let mut sys = System {
             bx: self.bx,
             shear,
+            walls,
+            body_force: self.body_force,
             params: self.params,
             q: vec![Vec3::zeros(); n],
             p,
@@ -239,6 +315,9 @@ impl System {
             seed: 0,
             skin: DEFAULT_SKIN,
             shear_rate: None,
+            walls: None,
+            frozen: None,
+            body_force: None,
         }
     }
 
@@ -257,6 +336,34 @@ impl System {
     /// The Lees-Edwards boundaries, if the box is sheared.
     pub fn shear(&self) -> Option<&LeesEdwards> {
         self.shear.as_ref()
+    }
+    /// The walls, if any.
+    pub fn walls(&self) -> Option<&Walls> {
+        self.walls.as_ref().map(|w| &w.walls)
+    }
+    /// Which particles are frozen (`None` without walls).
+    pub fn frozen(&self) -> Option<&[bool]> {
+        self.walls.as_ref().map(|w| &w.frozen[..])
+    }
+    /// The external force on mobile particles, if any.
+    pub fn body_force(&self) -> Option<Vec3> {
+        self.body_force
+    }
+    /// Whether some pairs carry a velocity shift (`Pair::dvx`): under shear or with walls.
+    pub(crate) fn shifted_pairs(&self) -> bool {
+        self.shear.is_some() || self.walls.is_some()
+    }
+    /// `p_i += h g` for every mobile particle, `g` the body force (nothing without one). The
+    /// sub-flows that apply the conservative force (B, F, T) call it, so the body force is part
+    /// of every letter that carries `F^C`, never of the cached forces.
+    pub(crate) fn apply_body_force(&mut self, h: f64) {
+        if let Some(g) = self.body_force {
+            for (p, &im) in self.p.iter_mut().zip(&self.inv_mass) {
+                if im > 0.0 {
+                    *p += h * g;
+                }
+            }
+        }
     }
     pub fn positions(&self) -> &[Vec3] {
         &self.q
@@ -368,8 +475,14 @@ impl System {
         if !self.pairs_valid {
             let shear = self.shear.as_ref();
             self.list.update(&self.q, &self.bx, shear, self.params.rc());
-            self.pairs
-                .collect(&self.list, &self.q, &self.bx, shear, &self.params);
+            self.pairs.collect(
+                &self.list,
+                &self.q,
+                &self.bx,
+                shear,
+                self.walls.as_ref(),
+                &self.params,
+            );
             self.pairs_valid = true;
             self.counters.pair_distance_evaluations += 1;
         }
@@ -391,7 +504,14 @@ impl System {
         let mut list = VerletList::new(0.0);
         list.rebuild(&self.q, &self.bx, shear, self.params.rc());
         let mut pairs = PairTable::default();
-        pairs.collect(&list, &self.q, &self.bx, shear, &self.params);
+        pairs.collect(
+            &list,
+            &self.q,
+            &self.bx,
+            shear,
+            self.walls.as_ref(),
+            &self.params,
+        );
         let mut forces = vec![Vec3::zeros(); self.len()];
         force::conservative(&pairs, &self.params, &self.kind, &mut forces);
         f(self, &pairs, &forces)

@@ -53,6 +53,9 @@ fn phi1(x: f64) -> f64 {
 pub fn exponential_velocity(sys: &mut System, h: f64, stream: u8, noise: EtdNoise) {
     sys.ensure_pairs();
     sys.counters.force_evaluations += 1;
+    // Pairs across a Lees-Edwards boundary or with a moving wall particle carry a velocity
+    // shift (`Pair::dvx`).
+    let shifted = sys.shifted_pairs();
     let System {
         ref pairs,
         ref mut p,
@@ -72,7 +75,12 @@ pub fn exponential_velocity(sys: &mut System, h: f64, stream: u8, noise: EtdNois
     for pair in pairs {
         let (i, j) = (pair.i as usize, pair.j as usize);
         let wd = pair.wr * pair.wr;
-        let u = pair.e.dot(&(p[i] * inv_mass[i] - p[j] * inv_mass[j]));
+        let (vi, vj) = (p[i] * inv_mass[i], p[j] * inv_mass[j]);
+        let u = if shifted {
+            pair.normal_velocity::<true>(vi, vj)
+        } else {
+            pair.normal_velocity::<false>(vi, vj)
+        };
         let f = (params.a(kind[i], kind[j]) * pair.w - gamma * wd * u) * pair.e;
         force[i] += f;
         force[j] -= f;

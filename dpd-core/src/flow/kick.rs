@@ -1,12 +1,13 @@
 use crate::system::System;
 
-/// B: `p_i += h F^C_i(q)`. Exact for any `h`; reuses the conservative forces while positions
+/// B: `p_i += h F^C_i(q)` (plus `h g` with a body force `g`). Exact for any `h`; reuses the conservative forces while positions
 /// are unchanged.
 pub fn kick(sys: &mut System, h: f64) {
     sys.ensure_conservative();
     for (p, f) in sys.p.iter_mut().zip(&sys.conservative) {
         *p += h * f;
     }
+    sys.apply_body_force(h);
 }
 
 /// F: `p_i += h F_i` with the full force (conservative + dissipative + random).
@@ -23,6 +24,7 @@ pub fn full_force(sys: &mut System, h: f64, stream: u8) {
     for (p, f) in sys.p.iter_mut().zip(&sys.full) {
         *p += h * f;
     }
+    sys.apply_body_force(h);
     if let Some(impulses) = &mut sys.impulses {
         impulses.add_kick(h, sys.full_virial.as_ref());
     }

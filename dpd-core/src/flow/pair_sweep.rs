@@ -31,7 +31,7 @@ fn sweep(
     update: impl Fn(&PairState) -> f64 + Sync,
 ) {
     sys.ensure_pairs();
-    let recorded = match (sys.shear.is_some(), sys.impulses.is_some()) {
+    let recorded = match (sys.shifted_pairs(), sys.impulses.is_some()) {
         (false, false) => {
             sweep_with::<false, ()>(sys, stream, order, conservative_h, update);
             None
@@ -61,7 +61,7 @@ fn sweep(
 }
 
 #[inline(always)]
-fn sweep_with<const SHEARED: bool, V: Virial>(
+fn sweep_with<const SHIFTED: bool, V: Virial>(
     sys: &mut System,
     stream: u8,
     order: SweepOrder,
@@ -87,7 +87,7 @@ fn sweep_with<const SHEARED: bool, V: Virial>(
         let (pi, pj) = unsafe { (p.get(i), p.get(j)) };
         let mu = inv_mass[i] + inv_mass[j];
         let state = PairState {
-            u: pair.normal_velocity::<SHEARED>(*pi * inv_mass[i], *pj * inv_mass[j]),
+            u: pair.normal_velocity::<SHIFTED>(*pi * inv_mass[i], *pj * inv_mass[j]),
             mu,
             pair,
             a: params.a(kind[i], kind[j]),
@@ -157,4 +157,5 @@ pub fn trotter(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
         let phi1 = if x == 0.0 { 1.0 } else { -em1 / x };
         s.u * em1 + s.a * s.pair.w * s.mu * h * phi1 + ou_std(kbt, s.mu, em1) * s.r
     });
+    sys.apply_body_force(h);
 }

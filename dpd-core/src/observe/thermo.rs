@@ -25,7 +25,8 @@ impl Thermo {
 
 /// `k_B T_K = sum_i p_i . p_i / m_i / (3 (N - 1))`: the total momentum is conserved, so N - 1
 /// particles' worth of degrees of freedom are free. Under shear, of the velocities relative to
-/// the streaming profile ([`System::peculiar_velocities`]).
+/// the streaming profile ([`System::peculiar_velocities`]); with walls, N counts the mobile
+/// particles only (frozen ones have zero velocity as far as this sum goes).
 pub fn kinetic_temperature(sys: &System) -> f64 {
     let twice_ke: f64 = match sys.shear {
         None => sys
@@ -41,7 +42,11 @@ pub fn kinetic_temperature(sys: &System) -> f64 {
             .map(|(v, m)| m * v.norm_squared())
             .sum(),
     };
-    twice_ke / (3.0 * (sys.len() as f64 - 1.0))
+    let mobile = match &sys.walls {
+        None => sys.len(),
+        Some(w) => w.frozen.iter().filter(|&&f| !f).count(),
+    };
+    twice_ke / (3.0 * (mobile as f64 - 1.0))
 }
 
 /// Measure [`Thermo`] at the current positions and momenta.
