@@ -10,6 +10,7 @@ use crate::Vec3;
 ///
 /// Adds the largest single-particle displacement to the step's drift bound used by blow-up
 /// detection, and drops every position-dependent cache.
+#[inline]
 pub fn drift(sys: &mut System, h: f64) {
     let bx = sys.bx;
     let max2 = match (&mut sys.shear, &sys.walls) {

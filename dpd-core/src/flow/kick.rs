@@ -2,6 +2,7 @@ use crate::system::System;
 
 /// B: `p_i += h F^C_i(q)` (plus `h g` with a body force `g`). Exact for any `h`; reuses the conservative forces while positions
 /// are unchanged.
+#[inline]
 pub fn kick(sys: &mut System, h: f64) {
     sys.ensure_conservative();
     for (p, f) in sys.p.iter_mut().zip(&sys.conservative) {
@@ -19,6 +20,7 @@ pub fn kick(sys: &mut System, h: f64) {
 ///
 /// When pair impulses are being recorded for the stress, the kick adds `h` times the
 /// dissipative and random pair virial of the evaluation it uses.
+#[inline]
 pub fn full_force(sys: &mut System, h: f64, stream: u8) {
     sys.ensure_full(stream);
     for (p, f) in sys.p.iter_mut().zip(&sys.full) {

@@ -117,6 +117,7 @@ fn ou_std(kbt: f64, mu: f64, em1: f64) -> f64 {
 /// O: exact pairwise Ornstein-Uhlenbeck sweep,
 /// `u_new = u exp(-tau h) + sqrt(kbt mu (1 - exp(-2 tau h))) R`, `tau = gamma w_D mu`.
 /// Evaluated with `expm1`, so `tau h -> 0` and `tau h -> infinity` are both accurate.
+#[inline]
 pub fn ou(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
     let (gamma, kbt) = (sys.params.gamma(), sys.params.kbt());
     if gamma == 0.0 {
@@ -131,6 +132,7 @@ pub fn ou(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
 /// O with BBK (Shardlow's update), using the same normal `R` twice:
 /// `u_half = u - (tau h/2) u + (s_n sqrt(h)/2) R`, `u_new = (u_half + (s_n sqrt(h)/2) R) / (1 + tau h/2)`,
 /// `s_n = sigma w_R mu`.
+#[inline]
 pub fn bbk(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
     let (gamma, sigma) = (sys.params.gamma(), sys.params.sigma());
     if gamma == 0.0 {
@@ -148,6 +150,7 @@ pub fn bbk(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
 /// T: pairwise conservative + OU, exact per pair (DPD-Trotter):
 /// `u_new = u exp(-tau h) + f mu h phi1(tau h) + sqrt(kbt mu (1 - exp(-2 tau h))) R` with
 /// `f = a_ij (1 - r/r_c)` and `phi1(x) = (1 - exp(-x)) / x`, `phi1(0) = 1`.
+#[inline]
 pub fn trotter(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
     let (gamma, kbt) = (sys.params.gamma(), sys.params.kbt());
     sys.counters.force_evaluations += 1;
