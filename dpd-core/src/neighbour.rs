@@ -34,6 +34,7 @@
 //! each particle of a pair, one for the slide between them).
 
 use crate::boundary::{LeesEdwards, PeriodicBox};
+use crate::chunked;
 use crate::Vec3;
 
 /// Particles binned into cells of edge at least `min_cell`.
@@ -396,21 +397,30 @@ impl VerletList {
     pub fn rebuild(&mut self, q: &[Vec3], bx: &PeriodicBox, shear: Option<&LeesEdwards>, rc: f64) {
         let reach = rc + self.skin;
         self.grid.build(q, bx, reach);
-        let mut by_colour: Vec<Vec<usize>> = vec![Vec::new(); COLOURS];
-        for c in 0..self.grid.cells() {
-            by_colour[self.grid.colour(c)].push(c);
+        // Cells in sweep order (colour-major), scanned on all threads, joined in order.
+        let mut cells: Vec<usize> = (0..self.grid.cells()).collect();
+        cells.sort_by_key(|&c| self.grid.colour(c));
+        let mut per_colour = [0usize; COLOURS];
+        for &c in &cells {
+            per_colour[self.grid.colour(c)] += 1;
         }
-        self.candidates.clear();
+        let grid = &self.grid;
+        let (candidates, found) = chunked::flat_map_ordered(&cells, |&c, out| {
+            grid.for_each_pair_of_cell(c, bx, shear, reach, |i, j, _| out.push((i, j)))
+        });
+        self.candidates = candidates;
         self.groups.runs.clear();
         self.groups.colours.clear();
         self.groups.runs.push(0);
         self.groups.colours.push(0);
-        for cells in &by_colour {
-            for &c in cells {
-                let found = &mut self.candidates;
-                self.grid
-                    .for_each_pair_of_cell(c, bx, shear, reach, |i, j, _| found.push((i, j)));
-                self.end_run();
+        let mut found = found.into_iter();
+        let mut end = 0;
+        for count in per_colour {
+            for n in found.by_ref().take(count) {
+                end += n;
+                if n > 0 {
+                    self.groups.runs.push(end);
+                }
             }
             self.end_colour();
         }

@@ -2,6 +2,7 @@
 //! and the executor that visits them in the sweep order of [`crate::neighbour`].
 
 use crate::boundary::{LeesEdwards, PeriodicBox};
+use crate::chunked;
 use crate::neighbour::{Runs, VerletList, COLOURS};
 use crate::params::Params;
 use crate::walls::FrozenWalls;
@@ -106,17 +107,19 @@ impl PairTable {
         list: &VerletList,
         q: &[Vec3],
         params: &Params,
-        image: impl Fn(u32, u32, Vec3) -> Option<(Vec3, f64)>,
+        image: impl Fn(u32, u32, Vec3) -> Option<(Vec3, f64)> + Sync,
     ) {
         let rc = params.rc();
         let rc2 = rc * rc;
         let inv_rc = 1.0 / rc;
         let from = list.groups();
-        self.pairs.clear();
-        self.groups.runs.clear();
-        self.groups.runs.push(0);
-        for run in from.runs.windows(2) {
-            for &(i, j) in &list.candidates()[run[0] as usize..run[1] as usize] {
+        let runs: Vec<&[(u32, u32)]> = from
+            .runs
+            .windows(2)
+            .map(|run| &list.candidates()[run[0] as usize..run[1] as usize])
+            .collect();
+        let (pairs, kept) = chunked::flat_map_ordered(&runs, |run, out| {
+            for &(i, j) in *run {
                 let Some((d, dvx)) = image(i, j, q[i as usize] - q[j as usize]) else {
                     continue;
                 };
@@ -124,7 +127,7 @@ impl PairTable {
                 if r2 < rc2 && r2 > 0.0 {
                     let r = r2.sqrt();
                     let w = 1.0 - r * inv_rc;
-                    self.pairs.push(Pair {
+                    out.push(Pair {
                         i,
                         j,
                         e: d / r,
@@ -135,7 +138,14 @@ impl PairTable {
                     });
                 }
             }
-            self.groups.runs.push(self.pairs.len() as u32);
+        });
+        self.pairs = pairs;
+        self.groups.runs.clear();
+        self.groups.runs.push(0);
+        let mut end = 0;
+        for n in kept {
+            end += n;
+            self.groups.runs.push(end);
         }
         self.groups.colours.clone_from(&from.colours);
         self.groups.independent = from.independent;
