@@ -2,6 +2,7 @@
 
 use crate::boundary::PeriodicBox;
 use crate::error::{positive, ParamError};
+use crate::walls::Walls;
 use crate::Vec3;
 use rand::{Rng, SeedableRng};
 use rand_distr::StandardNormal;
@@ -52,4 +53,20 @@ pub fn maxwell_momenta(masses: &[f64], kbt: f64, seed: u64) -> Vec<Vec3> {
         *pi -= (m / mass) * total;
     }
     p
+}
+
+/// The wall slabs of a channel: which particles at `q` lie outside `walls` (to be frozen, see
+/// [`crate::SystemBuilder::frozen`]); their momenta in `p` are set to zero, so that the total
+/// momentum is the fluid's.
+pub fn freeze_outside(walls: &Walls, q: &[Vec3], p: &mut [Vec3]) -> Vec<bool> {
+    q.iter()
+        .zip(p)
+        .map(|(x, p)| {
+            let frozen = !walls.contains(x.z);
+            if frozen {
+                *p = Vec3::zeros();
+            }
+            frozen
+        })
+        .collect()
 }
