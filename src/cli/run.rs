@@ -1,12 +1,15 @@
 //! `dpd run`: one scene with one scheme; prints the observables averaged over the runs.
 
 use super::{bad_input, print_json, progress, INTERRUPTED};
+use dpd::measure::flows::{ProfileSpec, Viscosity};
+use dpd::measure::plot::profile_plot;
 use dpd::measure::runner::{lock, run_parallel, Control, Job, RunResult};
 use dpd::measure::{report, Aggregate, Overrides, Scene};
 use dpd::schemes::registry::resolve;
 use dpd::Scheme;
 use serde::Serialize;
 use std::collections::HashMap;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Mutex;
 
@@ -17,6 +20,9 @@ pub struct Args {
     /// Print one JSON object on stdout instead of the table
     #[arg(long)]
     json: bool,
+    /// With `[profile]`: write each run's profile as `profile-seed<k>.csv` and `.svg` here
+    #[arg(long, value_name = "DIR")]
+    profile_dir: Option<PathBuf>,
 }
 
 /// What `dpd run --json` prints: the combined observables of the runs, their details and the
@@ -25,6 +31,9 @@ pub struct Args {
 struct RunReport<'a> {
     #[serde(flatten)]
     combined: Aggregate,
+    /// Mean viscosity over the runs, with a non-zero shear rate.
+    #[serde(flatten, skip_serializing_if = "Option::is_none")]
+    viscosity: Option<Viscosity>,
     steps: u64,
     /// Some run was stopped by Ctrl-C; the observables cover what it sampled.
     interrupted: bool,
@@ -78,12 +87,19 @@ pub fn main(args: Args) -> ExitCode {
     let refs: Vec<&RunResult> = results.iter().collect();
     let report = RunReport {
         combined: Aggregate::of(&refs, scene.kbt),
+        viscosity: Viscosity::combine(&results.iter().map(|r| r.viscosity).collect::<Vec<_>>()),
         steps: scene.steps(scene.dt),
         interrupted: results.len() < jobs.len() || results.iter().any(|r| r.interrupted),
         program,
         results: &results,
         scene: &scene,
     };
+    if let Some(dir) = &args.profile_dir {
+        if let Err(e) = write_profiles(&results, scene.profile.as_ref(), dir) {
+            eprintln!("error: writing profiles to {}: {e}", dir.display());
+            return ExitCode::FAILURE;
+        }
+    }
     let code = if args.json {
         print_json(&report)
     } else {
@@ -135,6 +151,12 @@ fn print_table(r: &RunReport) {
     if let Some(d) = c.diffusion {
         println!("diffusion coefficient: {d:.5}");
     }
+    if let Some(v) = r.viscosity {
+        match v.shear_viscosity.zip(v.shear_viscosity_error) {
+            Some((eta, e)) => println!("shear viscosity: {eta:.4} +- {e:.4}"),
+            None => println!("shear viscosity: too few samples"),
+        }
+    }
     for run in r.results.iter().filter(|run| !run.stable) {
         println!(
             "seed {}: {}",
@@ -145,4 +167,26 @@ fn print_table(r: &RunReport) {
     if r.interrupted {
         println!("interrupted: the averages cover the samples taken before Ctrl-C");
     }
+}
+
+/// Write `profile-seed<k>.csv` and `.svg` into `dir` for every run with a profile.
+fn write_profiles(
+    results: &[RunResult],
+    spec: Option<&ProfileSpec>,
+    dir: &Path,
+) -> Result<(), Box<dyn std::error::Error>> {
+    let Some(spec) = spec else {
+        return Err("--profile-dir needs a [profile] table in the scene".into());
+    };
+    std::fs::create_dir_all(dir)?;
+    for r in results {
+        if let Some(rows) = &r.profile {
+            let stem = dir.join(format!("profile-seed{}", r.seed));
+            let csv = std::fs::File::create(stem.with_extension("csv"))?;
+            dpd::observe::write_profile_csv(spec.axis, rows, std::io::BufWriter::new(csv))?;
+            profile_plot(rows, spec.axis, &stem.with_extension("svg"))?;
+            eprintln!("wrote {}.csv and .svg", stem.display());
+        }
+    }
+    Ok(())
 }

@@ -6,6 +6,7 @@
 
 pub mod aggregate;
 pub mod critical;
+pub mod flows;
 pub mod plot;
 pub mod report;
 pub mod runner;

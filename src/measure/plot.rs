@@ -1,9 +1,10 @@
 //! SVG plots of a sweep: relative errors against dt on log-log axes with a second-order guide
-//! line, and radial distribution functions overlaid per dt.
+//! line, and radial distribution functions overlaid per dt; slab profiles of one run.
 
 use super::aggregate::Aggregate;
 use super::runner::RunResult;
 use super::sweep::{SweepResults, THRESHOLDS};
+use dpd_core::observe::ProfileRow;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 
@@ -216,4 +217,53 @@ fn mean_rdf(runs: &[&RunResult]) -> Option<Vec<(f64, f64)>> {
             .map(|b| (first[b][0], same.iter().map(|g| g[b][1]).sum::<f64>() / n))
             .collect(),
     )
+}
+
+/// A profile quantity: panel title and value of a row.
+type ProfileColumn = fn(&ProfileRow) -> f64;
+
+const PROFILE_PANELS: [(&str, ProfileColumn); 3] = [
+    ("velocity u_x", |r| r.velocity[0]),
+    ("number density", |r| r.density),
+    ("temperature k_B T", |r| r.temperature),
+];
+
+/// Three panels (x-velocity, density, temperature) of a slab profile across `axis`.
+pub fn profile_plot(rows: &[ProfileRow], axis: usize, path: &Path) -> Result<(), Error> {
+    let root = SVGBackend::new(path, (900, 1000)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let length = rows
+        .last()
+        .map_or(1.0, |r| r.position * 2.0 - rows[0].position);
+    let axis_name = ["x", "y", "z"][axis.min(2)];
+    for (area, (title, f)) in root.split_evenly((3, 1)).iter().zip(PROFILE_PANELS) {
+        let pts: Vec<(f64, f64)> = rows
+            .iter()
+            .map(|r| (r.position, f(r)))
+            .filter(|p| p.1.is_finite())
+            .collect();
+        let (lo, hi) = pts
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(p.1), hi.max(p.1))
+            });
+        let pad = 0.05 * (hi - lo).max(1e-9);
+        let (y0, y1) = if lo <= hi {
+            (lo - pad, hi + pad)
+        } else {
+            (0.0, 1.0)
+        };
+        let mut chart = ChartBuilder::on(area)
+            .caption(title, ("sans-serif", 20))
+            .margin(10)
+            .x_label_area_size(40)
+            .y_label_area_size(60)
+            .build_cartesian_2d(0.0..length, y0..y1)?;
+        chart.configure_mesh().x_desc(axis_name).draw()?;
+        let colour = COLOURS[0];
+        chart.draw_series(LineSeries::new(pts.iter().copied(), colour.stroke_width(2)))?;
+        chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, colour.filled())))?;
+    }
+    root.present()?;
+    Ok(())
 }

@@ -1,8 +1,9 @@
 //! One run: a scene's system advanced with one scheme at one time step, observables sampled at
 //! the end of full steps, integration timed on its own.
 
+use super::flows::{FlowObservers, Viscosity};
 use super::scene::Scene;
-use dpd_core::observe::{thermo, Rdf, ThermoAverages, Vacf};
+use dpd_core::observe::{thermo, ProfileRow, Rdf, ThermoAverages, Vacf};
 use dpd_core::{ParamError, Scheme};
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
@@ -53,7 +54,9 @@ pub struct RunResult {
     pub potential_energy: Option<f64>,
     /// Virial pressure.
     pub pressure: Option<f64>,
-    /// Wall-clock milliseconds per step of the integration alone (no sampling).
+    /// Wall-clock milliseconds per step of the integration alone (no sampling). In a sheared
+    /// scene this includes the recording of pair impulses for the stress, which the sweeps do
+    /// during the averaging window (a tensor update per pair).
     pub ms_per_step: Option<f64>,
     /// Force evaluations per step, counted during the integration.
     pub force_evaluations_per_step: Option<f64>,
@@ -65,6 +68,13 @@ pub struct RunResult {
     /// Diffusion coefficient from the velocity autocorrelation, with `[vacf]` in the scene.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub diffusion: Option<f64>,
+    /// With a non-zero `shear_rate`: the shear viscosity and its error (null with too few
+    /// samples).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub viscosity: Option<Viscosity>,
+    /// Slab profile with `[profile]` in the scene.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub profile: Option<Vec<ProfileRow>>,
 }
 
 impl RunResult {
@@ -110,6 +120,7 @@ pub fn run(
         )?),
         None => None,
     };
+    let mut flows = FlowObservers::new(scene, &sys)?;
     let (mut elapsed, mut forces, mut geometry) = (Duration::ZERO, 0, 0);
     let (mut error, mut interrupted) = (None, false);
     while sys.step() < steps {
@@ -134,8 +145,10 @@ pub fn run(
             thermo_avg.record(&thermo(&mut sys));
             rdf.iter_mut().for_each(|r| r.record(&sys));
             vacf.iter_mut().for_each(|v| v.record(&sys));
+            flows.record(&mut sys);
         }
     }
+    let (viscosity, profile) = flows.finish(&mut sys);
     let done = sys.step();
     let per_step = |x: f64| (done > 0).then(|| x / done as f64);
     let s = thermo_avg.summary();
@@ -165,6 +178,8 @@ pub fn run(
             .filter(|_| stable && s.samples > 0)
             .map(|v| v.diffusion(interval))
             .filter(|d| d.is_finite()),
+        viscosity: viscosity.map(|v| if stable { v } else { Viscosity::default() }),
+        profile: profile.filter(|_| stable),
     })
 }
 

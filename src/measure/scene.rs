@@ -3,12 +3,15 @@
 //!
 //! A scene names only what it needs; every key has the default of the standard equilibrium box
 //! of algorithms.md section 8 (N = 500, density 3, a = 25, gamma = 4.5, k_B T = 1, m = 1,
-//! s = 2, 1000 time units averaged over the last 80 %). The optional tables `[rdf]`, `[vacf]`
-//! and `[sweep]` switch on what they describe; a scene without them does not pay for them.
+//! s = 2, 1000 time units averaged over the last 80 %). The optional tables `[rdf]`, `[vacf]`,
+//! `[sweep]`, `[walls]` and `[profile]` and the keys `box`, `shear_rate` and `body_force`
+//! switch on what they describe (see [`super::flows`]); a scene without them does not pay for
+//! them.
 
-use dpd_core::init::{cubic_box, maxwell_momenta, uniform_positions};
+use super::flows::{ProfileSpec, WallSpec};
+use dpd_core::init::{cubic_box, freeze_outside, maxwell_momenta, uniform_positions};
 use dpd_core::system::DEFAULT_SKIN;
-use dpd_core::{ParamError, Params, System};
+use dpd_core::{ParamError, Params, PeriodicBox, System, Vec3};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use thiserror::Error;
@@ -53,6 +56,17 @@ pub struct Scene {
     pub rdf: Option<RdfSpec>,
     pub vacf: Option<VacfSpec>,
     pub sweep: Option<SweepSpec>,
+    /// Box edges `[L_x, L_y, L_z]`; then `n` is ignored and the box holds
+    /// `round(density V)` particles (wall slabs included). Default: the cube of `n` particles.
+    #[serde(rename = "box")]
+    pub box_lengths: Option<[f64; 3]>,
+    /// Lees-Edwards shear rate kappa (x-velocity gradient along y); a non-zero rate measures
+    /// the shear viscosity.
+    pub shear_rate: Option<f64>,
+    /// Force along x on every fluid particle (Poiseuille flow).
+    pub body_force: Option<f64>,
+    pub walls: Option<WallSpec>,
+    pub profile: Option<ProfileSpec>,
 }
 
 /// Radial distribution function accumulated over the averaging window.
@@ -113,6 +127,11 @@ impl Default for Scene {
             rdf: None,
             vacf: None,
             sweep: None,
+            box_lengths: None,
+            shear_rate: None,
+            body_force: None,
+            walls: None,
+            profile: None,
         }
     }
 }
@@ -205,6 +224,9 @@ pub struct Overrides {
     /// Worker threads (0: one per core)
     #[arg(long)]
     pub threads: Option<usize>,
+    /// Lees-Edwards shear rate kappa (measures the shear viscosity)
+    #[arg(long, value_name = "KAPPA", allow_hyphen_values = true)]
+    pub shear_rate: Option<f64>,
 }
 
 impl Scene {
@@ -249,6 +271,9 @@ impl Scene {
             runs,
             threads
         );
+        if let Some(k) = o.shear_rate {
+            s.shear_rate = Some(k);
+        }
         s.validate()?;
         Ok(s)
     }
@@ -277,19 +302,46 @@ impl Scene {
             "must be in (0, 1]",
         )?;
         require("runs", self.runs, self.runs >= 1, "must be at least 1")?;
-        let edge = (self.n as f64 / self.density).cbrt();
+        let edge = self.lengths()?.into_iter().fold(f64::INFINITY, f64::min);
         let min_edge = 2.0 * (1.0 + DEFAULT_SKIN);
-        require(
-            "n",
-            self.n,
-            self.n >= 2 && edge >= min_edge,
-            &format!(
-                "must be at least 2 and fill a cube of edge >= {min_edge} at density {} \
-                 (n >= {:.0})",
-                self.density,
-                (min_edge.powi(3) * self.density).ceil()
-            ),
-        )?;
+        if self.box_lengths.is_some() {
+            require(
+                "box",
+                format!("{:?}", self.box_lengths),
+                edge >= min_edge && self.particles() >= 2,
+                &format!("every edge must be >= {min_edge} and hold at least 2 particles"),
+            )?;
+        } else {
+            require(
+                "n",
+                self.n,
+                self.n >= 2 && edge >= min_edge,
+                &format!(
+                    "must be at least 2 and fill a cube of edge >= {min_edge} at density {} \
+                     (n >= {:.0})",
+                    self.density,
+                    (min_edge.powi(3) * self.density).ceil()
+                ),
+            )?;
+        }
+        if let Some(k) = self.shear_rate {
+            require("shear_rate", k, k.is_finite(), "must be finite")?;
+        }
+        if let Some(g) = self.body_force {
+            require("body_force", g, g.is_finite(), "must be finite")?;
+        }
+        if let Some(w) = &self.walls {
+            w.walls()?;
+        }
+        if let Some(p) = &self.profile {
+            require("profile.bins", p.bins, p.bins >= 1, "must be at least 1")?;
+            require(
+                "profile.axis",
+                p.axis,
+                p.axis <= 2,
+                "must be 0 (x), 1 (y) or 2 (z)",
+            )?;
+        }
         if let Some(r) = &self.rdf {
             let half = 0.5 * edge;
             require(
@@ -335,19 +387,51 @@ impl Scene {
             .build()
     }
 
+    /// The box: `box` if given, else the cube of `n` particles at `density`.
+    pub fn periodic_box(&self) -> Result<PeriodicBox, ParamError> {
+        match self.box_lengths {
+            Some(l) => PeriodicBox::new(l),
+            None => cubic_box(self.n, self.density),
+        }
+    }
+
+    fn lengths(&self) -> Result<[f64; 3], ParamError> {
+        Ok(self.periodic_box()?.lengths().into())
+    }
+
+    /// Number of particles (wall particles included).
+    pub fn particles(&self) -> usize {
+        match self.periodic_box() {
+            Ok(bx) if self.box_lengths.is_some() => (self.density * bx.volume()).round() as usize,
+            _ => self.n,
+        }
+    }
+
     /// The initial state of run `seed` at time step `dt`: uniform positions, Maxwell momenta
-    /// with the total momentum removed.
+    /// with the total momentum removed; with `[walls]`, the particles outside the channel are
+    /// frozen (and their momenta zeroed).
     pub fn system(&self, dt: f64, seed: u64) -> Result<System, ParamError> {
-        let bx = cubic_box(self.n, self.density)?;
-        let masses = vec![self.mass; self.n];
-        let q = uniform_positions(&bx, self.n, seed);
-        let p = maxwell_momenta(&masses, self.kbt, seed);
-        System::builder(self.params()?, bx, q)
-            .momenta(p)
+        let bx = self.periodic_box()?;
+        let n = self.particles();
+        let masses = vec![self.mass; n];
+        let q = uniform_positions(&bx, n, seed);
+        let mut p = maxwell_momenta(&masses, self.kbt, seed);
+        let mut builder = System::builder(self.params()?, bx, q.clone())
             .masses(masses)
             .dt(dt)
-            .seed(seed)
-            .build()
+            .seed(seed);
+        if let Some(w) = &self.walls {
+            let walls = w.walls()?;
+            let frozen = freeze_outside(&walls, &q, &mut p);
+            builder = builder.walls(walls).frozen(frozen);
+        }
+        if let Some(k) = self.shear_rate {
+            builder = builder.shear_rate(k);
+        }
+        if let Some(g) = self.body_force {
+            builder = builder.body_force(Vec3::new(g, 0.0, 0.0));
+        }
+        builder.momenta(p).build()
     }
 
     /// The effective parameters as TOML, for headers.

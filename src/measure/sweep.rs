@@ -411,6 +411,8 @@ mod tests {
             pair_distance_evaluations_per_step: Some(1.0),
             rdf: None,
             diffusion: None,
+            viscosity: None,
+            profile: None,
         };
         // Both errors grow as dt^2 and cross 10 % at 0.05 sqrt(2) (vv) and 0.1 sqrt(2)
         // (aboba, at twice the cost per step): equally efficient.

@@ -12,7 +12,7 @@ mod thermo;
 mod vacf;
 
 pub use average::{block_mean, Running, ThermoAverages, ThermoSummary};
-pub use profile::{fit_line, Profile, ProfileRow};
+pub use profile::{fit_line, write_profile_csv, Profile, ProfileRow};
 pub use rdf::Rdf;
 pub(crate) use stress::ImpulseVirial;
 pub use stress::{

@@ -3,7 +3,7 @@
 use crate::error::ParamError;
 use crate::system::System;
 use crate::Vec3;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::io::Write;
 
 /// Slab averages along `axis` (0 = x, 1 = y, 2 = z) over the samples recorded, of the mobile
@@ -26,7 +26,7 @@ pub struct Profile {
 }
 
 /// One slab of a [`Profile`].
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ProfileRow {
     /// Centre of the slab along the axis.
     pub position: f64,
@@ -113,24 +113,33 @@ impl Profile {
             .collect()
     }
 
-    /// Write the rows as CSV with a header line:
-    /// `<axis>,density,vx,vy,vz,temperature,count`.
-    pub fn write_csv(&self, mut out: impl Write) -> std::io::Result<()> {
+    /// Write the rows as CSV (see [`write_profile_csv`]).
+    pub fn write_csv(&self, out: impl Write) -> std::io::Result<()> {
+        write_profile_csv(self.axis, &self.rows(), out)
+    }
+}
+
+/// Write profile rows along `axis` (0, 1, 2) as CSV with a header line:
+/// `<axis>,density,vx,vy,vz,temperature,count` (`x`, `y` or `z` first).
+pub fn write_profile_csv(
+    axis: usize,
+    rows: &[ProfileRow],
+    mut out: impl Write,
+) -> std::io::Result<()> {
+    writeln!(
+        out,
+        "{},density,vx,vy,vz,temperature,count",
+        AXES[axis.min(2)]
+    )?;
+    for r in rows {
+        let [vx, vy, vz] = r.velocity;
         writeln!(
             out,
-            "{},density,vx,vy,vz,temperature,count",
-            AXES[self.axis]
+            "{},{},{},{},{},{},{}",
+            r.position, r.density, vx, vy, vz, r.temperature, r.count
         )?;
-        for r in self.rows() {
-            let [vx, vy, vz] = r.velocity;
-            writeln!(
-                out,
-                "{},{},{},{},{},{},{}",
-                r.position, r.density, vx, vy, vz, r.temperature, r.count
-            )?;
-        }
-        Ok(())
     }
+    Ok(())
 }
 
 /// Least-squares line `y = intercept + slope x` through `points` weighted by `weights`; returns
