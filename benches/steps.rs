@@ -5,7 +5,7 @@
 //! `cargo bench --bench steps`; results in docs/performance.md.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use dpd::init::{cubic_box, maxwell_momenta, uniform_positions};
+use dpd::init::equilibrium_box;
 use dpd::{Params, Scheme, System};
 use std::time::Duration;
 
@@ -13,14 +13,9 @@ const SCHEMES: [&str; 5] = ["vv", "dpd-s1", "aboba", "baoab", "prk3-ruth"];
 
 /// The equilibrium box of `n` particles, relaxed from its random start.
 fn relaxed(n: usize, scheme: &dyn Scheme) -> System {
-    let bx = cubic_box(n, 3.0).unwrap();
-    let params = Params::builder().build().unwrap();
-    let q = uniform_positions(&bx, n, 1);
-    let p = maxwell_momenta(&vec![1.0; n], 1.0, 1);
-    let mut sys = System::builder(params, bx, q)
-        .momenta(p)
+    let mut sys = equilibrium_box(Params::builder().build().unwrap(), n, 3.0, 1)
+        .unwrap()
         .dt(0.04)
-        .seed(1)
         .skin(0.0)
         .build()
         .unwrap();

@@ -4,9 +4,9 @@
 //!
 //! Usage: `cargo run --release --example step_timing -- N STEPS THREADS SKIN`
 
-use dpd::init::{cubic_box, maxwell_momenta, uniform_positions};
+use dpd::init::equilibrium_box;
 use dpd::reference::{Aboba, VelocityVerlet};
-use dpd::{Params, Scheme, System};
+use dpd::{Params, Scheme};
 use std::time::Instant;
 
 fn arg<T: std::str::FromStr>(k: usize, default: T) -> T {
@@ -30,14 +30,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .num_threads(threads)
         .build()?;
     for scheme in [&VelocityVerlet as &(dyn Scheme + Sync), &Aboba] {
-        let bx = cubic_box(n, 3.0)?;
         let params = Params::builder().a(25.0).gamma(4.5).kbt(1.0).build()?;
-        let q = uniform_positions(&bx, n, 1);
-        let p = maxwell_momenta(&vec![1.0; n], 1.0, 1);
-        let mut sys = System::builder(params, bx, q)
-            .momenta(p)
+        let mut sys = equilibrium_box(params, n, 3.0, 1)?
             .dt(0.04)
-            .seed(1)
             .skin(skin)
             .build()?;
         let seconds = pool.install(|| -> Result<f64, dpd::BlowUp> {

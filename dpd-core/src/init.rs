@@ -2,6 +2,8 @@
 
 use crate::boundary::PeriodicBox;
 use crate::error::{positive, ParamError};
+use crate::params::Params;
+use crate::system::{System, SystemBuilder};
 use crate::walls::Walls;
 use crate::Vec3;
 use rand::{Rng, SeedableRng};
@@ -14,6 +16,22 @@ pub fn cubic_box(n: usize, density: f64) -> Result<PeriodicBox, ParamError> {
         return Err(ParamError::new("n", n, "must be at least 1"));
     }
     PeriodicBox::cubic((n as f64 / density).cbrt())
+}
+
+/// The equilibrium box of algorithms.md section 8 for `params`: `n` unit-mass particles in the
+/// cube of number density `density`, uniform positions and Maxwell momenta at `params.kbt()`
+/// (total momentum removed), both drawn from `seed`, which also keys the pair random numbers.
+/// Set the time step and anything else on the returned builder.
+pub fn equilibrium_box(
+    params: Params,
+    n: usize,
+    density: f64,
+    seed: u64,
+) -> Result<SystemBuilder, ParamError> {
+    let bx = cubic_box(n, density)?;
+    let q = uniform_positions(&bx, n, seed);
+    let p = maxwell_momenta(&vec![1.0; n], params.kbt(), seed);
+    Ok(System::builder(params, bx, q).momenta(p).seed(seed))
 }
 
 /// `n` positions drawn uniformly and independently in the box.

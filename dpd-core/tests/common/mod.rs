@@ -2,21 +2,16 @@
 #![allow(dead_code)]
 
 use dpd_core::flow::{bbk, drift, full_force, kick, ou, trotter};
-use dpd_core::init::{cubic_box, maxwell_momenta, uniform_positions};
+use dpd_core::init::equilibrium_box;
 use dpd_core::params::ParamsBuilder;
 use dpd_core::{Params, Scheme, SweepOrder, System};
 
 /// A system of `n` unit-mass particles at `density` with the given parameters, Maxwell
 /// momenta and uniform positions.
 pub fn system(n: usize, density: f64, params: ParamsBuilder, dt: f64, seed: u64) -> System {
-    let params: Params = params.build().unwrap();
-    let bx = cubic_box(n, density).unwrap();
-    let q = uniform_positions(&bx, n, seed);
-    let p = maxwell_momenta(&vec![1.0; n], params.kbt(), seed);
-    System::builder(params, bx, q)
-        .momenta(p)
+    equilibrium_box(params.build().unwrap(), n, density, seed)
+        .unwrap()
         .dt(dt)
-        .seed(seed)
         .build()
         .unwrap()
 }
