@@ -42,6 +42,19 @@ pub(crate) fn non_negative(field: &str, value: f64) -> Result<f64, ParamError> {
     }
 }
 
+/// Require every component of every vector in `values` to be finite; the error names
+/// `field[i]`.
+pub(crate) fn finite_vectors(field: &str, values: &[crate::Vec3]) -> Result<(), ParamError> {
+    match values.iter().position(|x| !x.iter().all(|v| v.is_finite())) {
+        None => Ok(()),
+        Some(i) => Err(ParamError::new(
+            format!("{field}[{i}]"),
+            format!("{:?}", values[i]),
+            "must be finite",
+        )),
+    }
+}
+
 /// A step that produced a non-finite value or moved a particle too far. The system was left
 /// in the state before the failing step.
 #[derive(Debug, Clone, PartialEq, Error)]

@@ -1,7 +1,7 @@
 //! The state of a DPD system and the caches that let sub-flows share evaluations.
 
 use crate::boundary::{LeesEdwards, PeriodicBox};
-use crate::error::{positive, ParamError};
+use crate::error::{finite_vectors, positive, ParamError};
 use crate::force;
 use crate::neighbour::VerletList;
 use crate::observe::ImpulseVirial;
@@ -174,24 +174,8 @@ impl SystemBuilder {
                 ));
             }
         }
-        for (i, x) in self.q.iter().enumerate() {
-            if !x.iter().all(|v| v.is_finite()) {
-                return Err(ParamError::new(
-                    format!("positions[{i}]"),
-                    format!("{x:?}"),
-                    "must be finite",
-                ));
-            }
-        }
-        for (i, x) in p.iter().enumerate() {
-            if !x.iter().all(|v| v.is_finite()) {
-                return Err(ParamError::new(
-                    format!("momenta[{i}]"),
-                    format!("{x:?}"),
-                    "must be finite",
-                ));
-            }
-        }
+        finite_vectors("positions", &self.q)?;
+        finite_vectors("momenta", &p)?;
         for (i, &m) in mass.iter().enumerate() {
             positive(&format!("mass[{i}]"), m)?;
         }
@@ -416,15 +400,7 @@ impl System {
                 format!("must have {} entries", self.q.len()),
             ));
         }
-        for (i, x) in q.iter().enumerate() {
-            if !x.iter().all(|v| v.is_finite()) {
-                return Err(ParamError::new(
-                    format!("positions[{i}]"),
-                    format!("{x:?}"),
-                    "must be finite",
-                ));
-            }
-        }
+        finite_vectors("positions", q)?;
         self.place(q);
         self.positions_changed();
         Ok(())
