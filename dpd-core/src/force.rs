@@ -8,8 +8,11 @@ use crate::{Tensor, Vec3};
 use dpd_ir::SweepOrder;
 
 /// `out_i = F^C_i = sum_j a_ij (1 - r_ij/r_c) e_ij`.
-pub(crate) fn conservative(pairs: &PairTable, params: &Params, kind: &[u16], out: &mut [Vec3]) {
-    out.fill(Vec3::zeros());
+/// `out` is resized to one entry per particle (it is allocated on first use, so a scheme that
+/// never kicks with B holds no conservative-force array).
+pub(crate) fn conservative(pairs: &PairTable, params: &Params, kind: &[u16], out: &mut Vec<Vec3>) {
+    out.clear();
+    out.resize(kind.len(), Vec3::zeros());
     let out = Disjoint::new(out);
     pairs.visit(SweepOrder::Forward, |pair| {
         let (i, j) = (pair.i as usize, pair.j as usize);
@@ -57,7 +60,9 @@ fn full_with<const SHIFTED: bool, V: Virial>(sys: &mut System, stream: u8) -> V 
         dt,
         ..
     } = *sys;
-    full.fill(Vec3::zeros());
+    // Allocated on first use: a scheme without F holds no full-force array.
+    full.clear();
+    full.resize(p.len(), Vec3::zeros());
     let full = Disjoint::new(full);
     let gamma = params.gamma();
     let noise = params.sigma() / dt.sqrt();

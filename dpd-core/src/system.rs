@@ -270,9 +270,9 @@ impl SystemBuilder {
             list: VerletList::new(self.skin),
             pairs: PairTable::default(),
             pairs_valid: false,
-            conservative: vec![Vec3::zeros(); n],
+            conservative: Vec::new(),
             conservative_valid: false,
-            full: vec![Vec3::zeros(); n],
+            full: Vec::new(),
             full_valid: false,
             full_virial: None,
             impulses: None,
@@ -488,7 +488,7 @@ impl System {
             self.walls.as_ref(),
             &self.params,
         );
-        let mut forces = vec![Vec3::zeros(); self.len()];
+        let mut forces = Vec::new();
         force::conservative(&pairs, &self.params, &self.kind, &mut forces);
         f(self, &pairs, &forces)
     }
