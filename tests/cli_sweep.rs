@@ -2,6 +2,8 @@
 mod cli_support;
 
 use cli_support::{dpd, has_keys, refused, write, RUN_FIELDS, TINY};
+use std::path::Path;
+use std::process::Output;
 
 #[test]
 fn sweep_writes_points_and_summary_and_resumes() {
@@ -29,13 +31,7 @@ fn sweep_writes_points_and_summary_and_resumes() {
         "plots",
     ];
     let out = dpd(dir.path(), &args);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let text = std::fs::read_to_string(dir.path().join("out.json")).unwrap();
-    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let v = results(dir.path(), &out);
     // 2 schemes x 2 dt x 2 seeds; the baseline (aboba at dt_min) is one of them.
     let points = v["points"].as_array().unwrap();
     assert_eq!(points.len(), 8);
@@ -72,26 +68,84 @@ fn sweep_writes_points_and_summary_and_resumes() {
     assert_eq!(after["points"], v["points"]);
 }
 
+/// The results file `out.json` in `dir`, after checking that `out` succeeded.
+fn results(dir: &Path, out: &Output) -> serde_json::Value {
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(dir.join("out.json")).unwrap();
+    serde_json::from_str(&text).unwrap()
+}
+
+/// `dpd sweep` in `dir` of `scene` with aboba alone from `dt_min` to `dt_max`, then `extra`.
+fn aboba_sweep(dir: &Path, scene: &str, [dt_min, dt_max]: [&str; 2], extra: &[&str]) -> Output {
+    let base = [
+        "sweep",
+        "--scene",
+        scene,
+        "--schemes",
+        "aboba",
+        "--dt-min",
+        dt_min,
+        "--dt-max",
+        dt_max,
+    ];
+    dpd(dir, &[&base[..], extra].concat())
+}
+
 #[test]
 fn a_results_file_of_another_scene_or_bad_flags_are_refused() {
     let dir = tempfile::tempdir().unwrap();
     let scene = write(dir.path(), "tiny.toml", TINY);
-    let base = [
-        "sweep",
-        "--scene",
-        &scene,
-        "--schemes",
-        "aboba",
-        "--dt-min",
-        "0.1",
-        "--dt-max",
-        "0.1",
-    ];
-    let run = |extra: &[&str]| dpd(dir.path(), &[&base[..], extra].concat());
+    let run = |extra: &[&str]| aboba_sweep(dir.path(), &scene, ["0.1", "0.1"], extra);
     assert!(run(&["--reference", "aboba"]).status.success());
     refused(&run(&["--reference", "aboba", "--gamma", "40.5"]), "gamma");
     let factor = ["--reference", "aboba", "--dt-factor", "0.5", "--fresh"];
     refused(&run(&factor), "sweep.dt_factor");
     // The default reference, vv, is not among the schemes.
     refused(&run(&["--fresh"]), "sweep.reference");
+}
+
+#[test]
+fn a_viscosity_sweep_reports_its_observable_and_refuses_to_mix() {
+    let dir = tempfile::tempdir().unwrap();
+    let shear = "n = 100\ngamma = 450.0\nshear_rate = 0.2\ntime = 2.0\n";
+    let scene = write(dir.path(), "shear.toml", shear);
+    let run = |extra: &[&str]| {
+        let args = [
+            &[
+                "--reference",
+                "aboba",
+                "--dt-factor",
+                "2",
+                "--json",
+                "out.json",
+            ],
+            extra,
+        ];
+        aboba_sweep(dir.path(), &scene, ["0.01", "0.02"], &args.concat())
+    };
+    let out = run(&["--observable", "viscosity"]);
+    let v = results(dir.path(), &out);
+    assert_eq!(v["observable"], "viscosity");
+    assert_eq!(v["scene"]["sweep"]["observable"], "viscosity");
+    let rows = v["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 2);
+    for row in rows {
+        has_keys(row, &["shear_viscosity", "shear_viscosity_error"]);
+        assert!(row["shear_viscosity_relative_error"].is_number(), "{row}");
+    }
+    // The baseline is the dt_min point itself: no error there.
+    assert_eq!(rows[0]["shear_viscosity_relative_error"], 0.0);
+    has_keys(&v["summary"][0], &["critical_10", "critical_1"]);
+    // Resuming with another observable is refused by name; so is a scene without shear.
+    refused(&run(&[]), "sweep.observable");
+    let plain = write(dir.path(), "plain.toml", TINY);
+    let out = dpd(
+        dir.path(),
+        &["sweep", "--scene", &plain, "--observable", "viscosity"],
+    );
+    refused(&out, "shear_rate");
 }

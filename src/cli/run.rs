@@ -1,7 +1,7 @@
 //! `dpd run`: one scene with one scheme; prints the observables averaged over the runs.
 
 use super::{bad_input, print_json, progress, INTERRUPTED};
-use dpd::measure::flows::{ProfileSpec, Viscosity};
+use dpd::measure::flows::ProfileSpec;
 use dpd::measure::plot::profile_plot;
 use dpd::measure::runner::{lock, run_parallel, Control, Job, RunResult};
 use dpd::measure::{report, Aggregate, Overrides, Scene};
@@ -31,9 +31,6 @@ pub struct Args {
 struct RunReport<'a> {
     #[serde(flatten)]
     combined: Aggregate,
-    /// Mean viscosity over the runs, with a non-zero shear rate.
-    #[serde(flatten, skip_serializing_if = "Option::is_none")]
-    viscosity: Option<Viscosity>,
     steps: u64,
     /// Some run was stopped by Ctrl-C; the observables cover what it sampled.
     interrupted: bool,
@@ -87,7 +84,6 @@ pub fn main(args: Args) -> ExitCode {
     let refs: Vec<&RunResult> = results.iter().collect();
     let report = RunReport {
         combined: Aggregate::of(&refs, scene.kbt),
-        viscosity: Viscosity::combine(&results.iter().map(|r| r.viscosity).collect::<Vec<_>>()),
         steps: scene.steps(scene.dt),
         interrupted: results.len() < jobs.len() || results.iter().any(|r| r.interrupted),
         program,
@@ -151,7 +147,7 @@ fn print_table(r: &RunReport) {
     if let Some(d) = c.diffusion {
         println!("diffusion coefficient: {d:.5}");
     }
-    if let Some(v) = r.viscosity {
+    if let Some(v) = c.viscosity {
         match v.shear_viscosity.zip(v.shear_viscosity_error) {
             Some((eta, e)) => println!("shear viscosity: {eta:.4} +- {e:.4}"),
             None => println!("shear viscosity: too few samples"),

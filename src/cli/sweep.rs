@@ -4,7 +4,7 @@
 use super::run::header;
 use super::{bad_input, progress, INTERRUPTED};
 use dpd::measure::sweep::{self, load_finished, run_sweep, Hooks};
-use dpd::measure::{plot, report, Control, Overrides, Scene, SweepResults};
+use dpd::measure::{plot, report, Control, Observable, Overrides, Scene, SweepResults};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::atomic::Ordering;
@@ -31,6 +31,10 @@ pub struct Args {
     /// Scheme whose efficiency is 1
     #[arg(long)]
     reference: Option<String>,
+    /// Whose relative error gives the critical dt: T_C against k_B T (default) or, in a
+    /// sheared scene, the shear viscosity against the baseline run
+    #[arg(long, value_enum)]
+    observable: Option<Observable>,
     /// Results file: written after every finished point and read back to resume
     /// [default: OUT/sweep.json]
     #[arg(long, value_name = "FILE")]
@@ -55,7 +59,7 @@ pub fn main(args: Args) -> ExitCode {
     macro_rules! set {
         ($($key:ident),*) => { $(if let Some(v) = args.$key { w.$key = v; })* };
     }
-    set!(dt_min, dt_max, dt_factor, reference);
+    set!(dt_min, dt_max, dt_factor, reference, observable);
     scene.sweep = Some(w);
     if let Err(e) = scene.validate() {
         return bad_input(format!("scene: {e}"));
@@ -134,6 +138,10 @@ fn execute(scene: &Scene, json: &Path, out: &Path, fresh: bool) -> ExitCode {
     let written = write_outputs(&results, json, out);
     print!("{}", report::rows_table(&results.rows));
     println!();
+    println!(
+        "critical dt: where the relative error of the {} first reaches 10 % / 1 %",
+        w.observable.name().replace('-', " ")
+    );
     print!("{}", report::summary_table(&results.summary, &w.reference));
     match written {
         Ok(files) => println!("wrote {}", files.join(", ")),

@@ -1,6 +1,8 @@
 //! Results of independent runs (seeds) at one scheme and time step, combined.
 
+use super::flows::Viscosity;
 use super::runner::RunResult;
+use super::scene::Observable;
 use dpd_core::observe::Running;
 use serde::Serialize;
 
@@ -26,6 +28,10 @@ pub struct Aggregate {
     pub force_evaluations_per_step: Option<f64>,
     /// Mean diffusion coefficient, where the runs measured one.
     pub diffusion: Option<f64>,
+    /// Mean shear viscosity with its standard error, in a sheared scene (see
+    /// [`Viscosity::combine`]).
+    #[serde(flatten, skip_serializing_if = "Option::is_none")]
+    pub viscosity: Option<Viscosity>,
     /// (T_K - k_B T) / k_B T.
     pub kinetic_temperature_error: Option<f64>,
     /// (T_C - k_B T) / k_B T.
@@ -33,6 +39,9 @@ pub struct Aggregate {
     /// Relative to the baseline run (sweeps only).
     pub potential_energy_error: Option<f64>,
     pub pressure_error: Option<f64>,
+    /// (eta - eta_baseline) / eta_baseline (sweeps of a sheared scene only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shear_viscosity_relative_error: Option<f64>,
 }
 
 /// Mean of the `Some` values, `None` without any.
@@ -75,23 +84,41 @@ impl Aggregate {
             ms_per_step: mean(runs.iter().map(|r| r.ms_per_step)),
             force_evaluations_per_step: mean(runs.iter().map(|r| r.force_evaluations_per_step)),
             diffusion: over(|r| r.diffusion),
+            viscosity: Viscosity::combine(&runs.iter().map(|r| r.viscosity).collect::<Vec<_>>()),
             kinetic_temperature_error: relative(kinetic_temperature, Some(kbt)),
             configurational_temperature_error: relative(configurational_temperature, Some(kbt)),
             potential_energy_error: None,
             pressure_error: None,
+            shear_viscosity_relative_error: None,
         }
     }
 
-    /// Fill the potential-energy and pressure errors against a baseline.
+    /// Fill the potential-energy, pressure and viscosity errors against a baseline.
     pub fn compare_with(&mut self, baseline: &Aggregate) {
         self.potential_energy_error = relative(self.potential_energy, baseline.potential_energy);
         self.pressure_error = relative(self.pressure, baseline.pressure);
+        self.shear_viscosity_relative_error =
+            relative(self.shear_viscosity(), baseline.shear_viscosity());
     }
 
-    /// The error that decides the critical step: |T_C error|, infinite when a run blew up or
-    /// nothing was measured.
-    pub fn critical_error(&self) -> f64 {
-        match (self.stable, self.configurational_temperature_error) {
+    /// The mean shear viscosity, where measured.
+    pub fn shear_viscosity(&self) -> Option<f64> {
+        self.viscosity?.shear_viscosity
+    }
+
+    /// The relative error of `observable`: against k_B T for T_C, against the baseline for
+    /// the viscosity.
+    pub fn error_of(&self, observable: Observable) -> Option<f64> {
+        match observable {
+            Observable::ConfigurationalTemperature => self.configurational_temperature_error,
+            Observable::Viscosity => self.shear_viscosity_relative_error,
+        }
+    }
+
+    /// The error that decides the critical step: |relative error of `observable`|, infinite
+    /// when a run blew up or nothing was measured.
+    pub fn critical_error(&self, observable: Observable) -> f64 {
+        match (self.stable, self.error_of(observable)) {
             (true, Some(e)) => e.abs(),
             _ => f64::INFINITY,
         }

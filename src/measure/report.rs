@@ -8,7 +8,7 @@ type Cell<T> = fn(&T) -> Option<f64>;
 
 /// The numeric columns of a sweep row: header, value, decimals shown in tables
 /// (percentages are relative errors times 100).
-const ROW_COLUMNS: [(&str, Cell<Aggregate>, usize); 11] = [
+const ROW_COLUMNS: [(&str, Cell<Aggregate>, usize); 14] = [
     ("dt", |r| Some(r.dt), 4),
     ("T_K", |r| r.kinetic_temperature, 4),
     ("T_K err %", |r| percent(r.kinetic_temperature_error), 2),
@@ -23,6 +23,13 @@ const ROW_COLUMNS: [(&str, Cell<Aggregate>, usize); 11] = [
     ("U err %", |r| percent(r.potential_energy_error), 2),
     ("P", |r| r.pressure, 3),
     ("P err %", |r| percent(r.pressure_error), 2),
+    ("eta", |r| r.shear_viscosity(), 4),
+    ("eta +-", |r| r.viscosity?.shear_viscosity_error, 4),
+    (
+        "eta err %",
+        |r| percent(r.shear_viscosity_relative_error),
+        2,
+    ),
     ("ms/step", |r| r.ms_per_step, 4),
 ];
 
@@ -101,7 +108,8 @@ fn critical(c: &Option<Critical>) -> String {
     c.map_or_else(|| "-".into(), |c| c.to_string())
 }
 
-/// One line per scheme: critical dt at 10 % and 1 % T_C error, stability, cost, efficiency.
+/// One line per scheme: critical dt at 10 % and 1 % relative error of the sweep's observable,
+/// stability, cost, efficiency.
 pub fn summary_table(summary: &[SchemeSummary], reference: &str) -> String {
     let header = [
         "scheme",

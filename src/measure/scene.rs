@@ -103,6 +103,29 @@ pub struct SweepSpec {
     pub baseline_scheme: String,
     /// Time step of that run (default: dt_min).
     pub baseline_dt: Option<f64>,
+    /// Whose relative error decides the critical step sizes.
+    pub observable: Observable,
+}
+
+/// The accuracy measure of a sweep (algorithms.md sections 6 and 7).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
+#[serde(rename_all = "kebab-case")]
+pub enum Observable {
+    /// (T_C - k_B T) / k_B T.
+    #[default]
+    ConfigurationalTemperature,
+    /// The shear viscosity relative to the baseline run's (needs a non-zero `shear_rate`).
+    Viscosity,
+}
+
+impl Observable {
+    /// The name used in scenes, flags and JSON.
+    pub fn name(self) -> &'static str {
+        match self {
+            Observable::ConfigurationalTemperature => "configurational-temperature",
+            Observable::Viscosity => "viscosity",
+        }
+    }
 }
 
 impl Default for Scene {
@@ -164,6 +187,7 @@ impl Default for SweepSpec {
             reference: "vv".into(),
             baseline_scheme: "aboba".into(),
             baseline_dt: None,
+            observable: Observable::default(),
         }
     }
 }
@@ -363,6 +387,13 @@ impl Scene {
         }
         if let Some(w) = &self.sweep {
             w.validate()?;
+            require(
+                "sweep.observable",
+                w.observable.name(),
+                w.observable != Observable::Viscosity || self.shear_rate.is_some_and(|k| k != 0.0),
+                "needs a non-zero shear_rate (`shear_rate` in the scene or --shear-rate); \
+                 valid without it: configurational-temperature",
+            )?;
         }
         Ok(())
     }

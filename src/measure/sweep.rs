@@ -5,7 +5,7 @@
 use super::aggregate::Aggregate;
 use super::critical::{critical_dt, Critical};
 use super::runner::{lock, run_parallel, Control, Job, RunResult};
-use super::scene::{Scene, SceneError, SweepSpec};
+use super::scene::{Observable, Scene, SceneError, SweepSpec};
 use dpd_core::ParamError;
 use dpd_schemes::registry::resolve;
 use serde::{Deserialize, Serialize};
@@ -14,16 +14,17 @@ use std::path::Path;
 use std::sync::Mutex;
 use thiserror::Error;
 
-/// The two thresholds of the relative T_C error (algorithms.md section 7).
+/// The two thresholds of the relative error of the sweep's observable (algorithms.md
+/// section 7).
 pub const THRESHOLDS: [f64; 2] = [0.10, 0.01];
 
 /// Per scheme: critical step sizes, stability and efficiency.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct SchemeSummary {
     pub scheme: String,
-    /// dt at 10 % relative T_C error, where interpolated inside the grid.
+    /// dt at 10 % relative error of the sweep's observable, where interpolated inside the grid.
     pub critical_dt_10: Option<f64>,
-    /// dt at 1 % relative T_C error, where interpolated inside the grid.
+    /// dt at 1 % relative error, where interpolated inside the grid.
     pub critical_dt_1: Option<f64>,
     /// How each was found (also when it was not: below or above the grid, or next to a
     /// blow-up).
@@ -45,11 +46,13 @@ pub struct SchemeSummary {
 pub struct SweepResults {
     /// The effective scene.
     pub scene: Scene,
+    /// Whose relative error decides the critical step sizes (also `scene.sweep.observable`).
+    pub observable: Observable,
     /// Every finished run.
     pub points: Vec<RunResult>,
     /// Per (scheme, dt) over the seeds, in scheme order then increasing dt.
     pub rows: Vec<Aggregate>,
-    /// The small-dt run the potential energy and pressure are compared with.
+    /// The small-dt run the potential energy, pressure and viscosity are compared with.
     pub baseline: Option<Aggregate>,
     pub summary: Vec<SchemeSummary>,
     /// Every planned point is in `points`.
@@ -126,10 +129,18 @@ pub fn load_finished(path: &Path, scene: &Scene) -> Result<Vec<RunResult>, Sweep
         Err(e) => return Err(error(e.to_string())),
     };
     let stored: Stored = serde_json::from_str(&text).map_err(|e| error(e.to_string()))?;
+    let remedy = "choose another results file or remove it";
     if let Some(key) = physics_difference(&stored.scene, scene) {
         return Err(error(format!(
-            "it was written for a different scene ({key} differs); \
-             choose another results file or remove it"
+            "it was written for a different scene ({key} differs); {remedy}"
+        )));
+    }
+    let (was, is) = (spec(&stored.scene).observable, spec(scene).observable);
+    if was != is {
+        return Err(error(format!(
+            "it was written for sweep.observable = {}, not {}; {remedy}",
+            was.name(),
+            is.name()
         )));
     }
     Ok(stored
@@ -226,8 +237,11 @@ impl SweepResults {
         if let Some(b) = &baseline {
             rows.iter_mut().for_each(|r| r.compare_with(b));
         }
-        let mut summary: Vec<SchemeSummary> =
-            w.schemes.iter().map(|s| summarise(s, &rows)).collect();
+        let mut summary: Vec<SchemeSummary> = w
+            .schemes
+            .iter()
+            .map(|s| summarise(s, &rows, w.observable))
+            .collect();
         let reference = summary
             .iter()
             .find(|s| s.scheme == w.reference)
@@ -237,6 +251,7 @@ impl SweepResults {
         }
         SweepResults {
             scene: scene.clone(),
+            observable: w.observable,
             points,
             rows,
             baseline,
@@ -259,10 +274,14 @@ fn raw_efficiency(s: &SchemeSummary) -> Option<f64> {
     e.is_finite().then_some(e)
 }
 
-/// Critical step sizes, stability and cost of `scheme` from its `rows`.
-fn summarise(scheme: &str, rows: &[Aggregate]) -> SchemeSummary {
+/// Critical step sizes (of `observable`'s error), stability and cost of `scheme` from its
+/// `rows`.
+fn summarise(scheme: &str, rows: &[Aggregate], observable: Observable) -> SchemeSummary {
     let rows: Vec<&Aggregate> = rows.iter().filter(|r| r.scheme == scheme).collect();
-    let curve: Vec<(f64, f64)> = rows.iter().map(|r| (r.dt, r.critical_error())).collect();
+    let curve: Vec<(f64, f64)> = rows
+        .iter()
+        .map(|r| (r.dt, r.critical_error(observable)))
+        .collect();
     let [c10, c1] = THRESHOLDS.map(|t| critical_dt(&curve, t));
     let first_unstable = rows.iter().position(|r| !r.stable);
     let stable_until = first_unstable.unwrap_or(rows.len());
@@ -288,6 +307,7 @@ fn summarise(scheme: &str, rows: &[Aggregate]) -> SchemeSummary {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::measure::flows::Viscosity;
     use approx::assert_relative_eq;
     use std::sync::atomic::AtomicUsize;
     use std::sync::atomic::{AtomicBool, Ordering};
@@ -307,6 +327,7 @@ mod tests {
                 reference: "vv".into(),
                 baseline_scheme: "aboba".into(),
                 baseline_dt: Some(0.025),
+                observable: Observable::ConfigurationalTemperature,
             }),
             ..Default::default()
         }
@@ -382,6 +403,10 @@ mod tests {
         };
         let e = load_finished(&path, &other).unwrap_err().to_string();
         assert!(e.contains("gamma"), "{e}");
+        let mut viscosity = tiny();
+        viscosity.sweep.as_mut().unwrap().observable = Observable::Viscosity;
+        let e = load_finished(&path, &viscosity).unwrap_err().to_string();
+        assert!(e.contains("sweep.observable"), "{e}");
         let more_runs = Scene { runs: 5, ..tiny() };
         assert!(load_finished(&path, &more_runs).is_ok());
         assert!(load_finished(&dir.path().join("none.json"), &tiny())
@@ -389,10 +414,9 @@ mod tests {
             .is_empty());
     }
 
-    #[test]
-    fn efficiency_is_relative_to_the_reference() {
-        let scene = tiny();
-        let point = |scheme: &str, dt: f64, tc: f64, ms: f64| RunResult {
+    /// A stable run of `scheme` at `dt` with T_C = `tc`, costing `ms` per step.
+    fn point(scheme: &str, dt: f64, tc: f64, ms: f64) -> RunResult {
+        RunResult {
             scheme: scheme.into(),
             dt,
             seed: 1,
@@ -413,7 +437,64 @@ mod tests {
             diffusion: None,
             viscosity: None,
             profile: None,
+        }
+    }
+
+    #[test]
+    fn the_viscosity_observable_compares_with_the_baseline() {
+        let mut scene = Scene {
+            runs: 1,
+            shear_rate: Some(0.2),
+            ..tiny()
         };
+        let w = scene.sweep.as_mut().unwrap();
+        w.observable = Observable::Viscosity;
+        w.schemes = vec!["vv".into()];
+        w.reference = "vv".into();
+        // Viscosity 2 at the baseline; vv errs 5 % and 20 % (as dt^2; its T_C is exact): 10 %
+        // at 0.05 sqrt(2).
+        let sheared = |scheme: &str, dt: f64, eta: f64| RunResult {
+            viscosity: Some(Viscosity {
+                shear_viscosity: Some(eta),
+                shear_viscosity_error: Some(0.01),
+            }),
+            ..point(scheme, dt, 1.0, 1.0)
+        };
+        let points = vec![
+            sheared("vv", 0.05, 2.1),
+            sheared("vv", 0.1, 2.4),
+            sheared("aboba", 0.025, 2.0),
+        ];
+        let r = SweepResults::new(&scene, points.clone());
+        assert_eq!(r.observable, Observable::Viscosity);
+        assert_relative_eq!(
+            r.rows[1].shear_viscosity_relative_error.unwrap(),
+            0.2,
+            max_relative = 1e-12
+        );
+        assert_relative_eq!(
+            r.summary[0].critical_dt_10.unwrap(),
+            0.05 * 2f64.sqrt(),
+            max_relative = 1e-9
+        );
+        assert_eq!(
+            r.summary[0].critical_1,
+            Some(Critical::BelowRange { dt_min: 0.05 })
+        );
+        // The default observable sees the exact T_C: nothing crosses.
+        scene.sweep.as_mut().unwrap().observable = Observable::ConfigurationalTemperature;
+        let t = SweepResults::new(&scene, points);
+        assert_eq!(t.summary[0].critical_dt_10, None);
+        // Without a shear rate the viscosity observable is refused by name.
+        let mut plain = tiny();
+        plain.sweep.as_mut().unwrap().observable = Observable::Viscosity;
+        let e = plain.validate().unwrap_err();
+        assert_eq!(e.field, "sweep.observable");
+    }
+
+    #[test]
+    fn efficiency_is_relative_to_the_reference() {
+        let scene = tiny();
         // Both errors grow as dt^2 and cross 10 % at 0.05 sqrt(2) (vv) and 0.1 sqrt(2)
         // (aboba, at twice the cost per step): equally efficient.
         let points = vec![
