@@ -48,6 +48,13 @@ fn channel_profile_is_written_as_csv_and_svg() {
     );
     let v = json(&out);
     assert_eq!(v["results"][0]["profile"].as_array().unwrap().len(), 10);
+    // Between walls T_C and the pressure are not bulk quantities: null.
+    assert!(v["configurational_temperature"].is_null() && v["pressure"].is_null());
+    assert!(v["kinetic_temperature"].is_number());
+    // The header leaves out the n that `box` overrides and gives the particle count.
+    let header = String::from_utf8_lossy(&out.stderr);
+    assert!(header.contains("# 1000 particles"), "{header}");
+    assert!(!header.lines().any(|l| l.starts_with("n = ")), "{header}");
     let csv = std::fs::read_to_string(dir.path().join("prof/profile-seed1.csv")).unwrap();
     assert!(
         csv.starts_with("z,density,vx,vy,vz,temperature,count\n"),

@@ -48,11 +48,11 @@ pub struct RunResult {
     pub samples: u64,
     /// k_B T_K.
     pub kinetic_temperature: Option<f64>,
-    /// k_B T_C, the ratio of the averaged numerator and denominator.
+    /// k_B T_C, the ratio of the averaged numerator and denominator (`None` with `[walls]`).
     pub configurational_temperature: Option<f64>,
     /// Potential energy per particle.
     pub potential_energy: Option<f64>,
-    /// Virial pressure.
+    /// Virial pressure (`None` with `[walls]`).
     pub pressure: Option<f64>,
     /// Wall-clock milliseconds per step of the integration alone (no sampling). In a sheared
     /// scene this includes the recording of pair impulses for the stress, which the sweeps do
@@ -154,6 +154,9 @@ pub fn run(
     let s = thermo_avg.summary();
     let stable = error.is_none();
     let observed = |x: f64| (stable && s.samples > 0 && x.is_finite()).then_some(x);
+    // Between walls the sums include frozen particles and the wall forces: T_C and the
+    // periodic virial pressure do not mean what they mean in the bulk.
+    let bulk = |x: f64| observed(x).filter(|_| scene.walls.is_none());
     Ok(RunResult {
         scheme: job.scheme.clone(),
         dt,
@@ -165,9 +168,9 @@ pub fn run(
         interrupted,
         samples: s.samples,
         kinetic_temperature: observed(s.kinetic_temperature),
-        configurational_temperature: observed(s.configurational_temperature),
+        configurational_temperature: bulk(s.configurational_temperature),
         potential_energy: observed(s.potential_energy),
-        pressure: observed(s.pressure),
+        pressure: bulk(s.pressure),
         ms_per_step: per_step(elapsed.as_secs_f64() * 1e3),
         force_evaluations_per_step: per_step(forces as f64),
         pair_distance_evaluations_per_step: per_step(geometry as f64),

@@ -465,9 +465,19 @@ impl Scene {
         builder.momenta(p).build()
     }
 
-    /// The effective parameters as TOML, for headers.
+    /// The effective parameters as TOML, for headers; with `box`, the ignored `n` is left out
+    /// and the particle count given in a comment.
     pub fn to_toml(&self) -> String {
-        toml::to_string(self).unwrap_or_else(|e| format!("(scene not printable: {e})"))
+        let mut table = match toml::Table::try_from(self) {
+            Ok(table) => table,
+            Err(e) => return format!("(scene not printable: {e})"),
+        };
+        let mut out = String::new();
+        if self.box_lengths.is_some() {
+            table.remove("n");
+            out = format!("# {} particles (density x box volume)\n", self.particles());
+        }
+        out + &table.to_string()
     }
 }
 

@@ -120,7 +120,8 @@ impl Profile {
 }
 
 /// Write profile rows along `axis` (0, 1, 2) as CSV with a header line:
-/// `<axis>,density,vx,vy,vz,temperature,count` (`x`, `y` or `z` first).
+/// `<axis>,density,vx,vy,vz,temperature,count` (`x`, `y` or `z` first); the velocity and
+/// temperature of an empty slab are empty fields.
 pub fn write_profile_csv(
     axis: usize,
     rows: &[ProfileRow],
@@ -131,12 +132,21 @@ pub fn write_profile_csv(
         "{},density,vx,vy,vz,temperature,count",
         AXES[axis.min(2)]
     )?;
+    // A slab no particle visited has no velocity or temperature: empty fields, not NaN.
+    let field = |x: f64| {
+        if x.is_finite() {
+            x.to_string()
+        } else {
+            String::new()
+        }
+    };
     for r in rows {
-        let [vx, vy, vz] = r.velocity;
+        let [vx, vy, vz] = r.velocity.map(field);
+        let (t, count) = (field(r.temperature), r.count);
         writeln!(
             out,
-            "{},{},{},{},{},{},{}",
-            r.position, r.density, vx, vy, vz, r.temperature, r.count
+            "{},{},{vx},{vy},{vz},{t},{count}",
+            r.position, r.density
         )?;
     }
     Ok(())
@@ -199,6 +209,14 @@ mod tests {
             csv.starts_with("y,density,vx,vy,vz,temperature,count\n1,"),
             "{csv}"
         );
+        // Along x in four slabs they sit in slabs 1 and 2; slabs 0 and 3 are empty.
+        let mut csv = Vec::new();
+        let mut along_x = Profile::new(&sys, 0, 4).unwrap();
+        along_x.record(&sys);
+        along_x.write_csv(&mut csv).unwrap();
+        let csv = String::from_utf8(csv).unwrap();
+        assert_eq!(csv.lines().nth(1), Some("0.5,0,,,,,0"), "{csv}");
+        assert_eq!(csv.lines().nth(4), Some("3.5,0,,,,,0"), "{csv}");
         assert_eq!(Profile::new(&sys, 3, 2).unwrap_err().field, "profile.axis");
     }
 
