@@ -394,6 +394,13 @@ impl Scene {
                 "needs a non-zero shear_rate (`shear_rate` in the scene or --shear-rate); \
                  valid without it: configurational-temperature",
             )?;
+            require(
+                "sweep.observable",
+                w.observable.name(),
+                self.walls.is_none(),
+                "is not measured between walls (T_C is null there and viscosity needs \
+                 shear, which walls exclude): sweep a scene without [walls]",
+            )?;
         }
         Ok(())
     }

@@ -490,6 +490,13 @@ mod tests {
         plain.sweep.as_mut().unwrap().observable = Observable::Viscosity;
         let e = plain.validate().unwrap_err();
         assert_eq!(e.field, "sweep.observable");
+        // Between walls neither observable is measured.
+        let walls = Scene {
+            walls: Some(Default::default()),
+            box_lengths: Some([5.0, 5.0, 10.0]),
+            ..tiny()
+        };
+        assert_eq!(walls.validate().unwrap_err().field, "sweep.observable");
     }
 
     #[test]
