@@ -3,6 +3,7 @@
 
 use super::aggregate::Aggregate;
 use super::runner::RunResult;
+use super::scene::Observable;
 use super::sweep::{SweepResults, THRESHOLDS};
 use dpd_core::observe::ProfileRow;
 use plotters::prelude::*;
@@ -22,15 +23,15 @@ const COLOURS: [RGBColor; 6] = [
 /// A relative error of a row.
 type Column = fn(&Aggregate) -> Option<f64>;
 
-/// The error panels: title and relative error of a row (plotted as its absolute value).
-const PANELS: [(&str, Column); 4] = [
-    ("|T_C error|", |r| r.configurational_temperature_error),
+/// The error panels after the observable's: title and relative error of a row (plotted as
+/// its absolute value).
+const PANELS: [(&str, Column); 3] = [
     ("|T_K error|", |r| r.kinetic_temperature_error),
     ("|U error| vs baseline", |r| r.potential_energy_error),
     ("|P error| vs baseline", |r| r.pressure_error),
 ];
 
-/// Write `errors.svg` (four error panels) and one `rdf-<scheme>.svg` per scheme with RDF data
+/// Write `errors.svg` (four error panels: the sweep's observable, T_K, U, P) and one `rdf-<scheme>.svg` per scheme with RDF data
 /// into `dir`; returns the files written.
 pub fn write_plots(results: &SweepResults, dir: &Path) -> Result<Vec<PathBuf>, Error> {
     let mut written = vec![dir.join("errors.svg")];
@@ -62,7 +63,16 @@ fn file_name(scheme: &str) -> String {
 fn errors(results: &SweepResults, path: &Path) -> Result<(), Error> {
     let root = SVGBackend::new(path, (1200, 900)).into_drawing_area();
     root.fill(&WHITE)?;
-    for (area, (title, f)) in root.split_evenly((2, 2)).iter().zip(PANELS) {
+    let observable: (&str, Column) = match results.observable {
+        Observable::ConfigurationalTemperature => {
+            ("|T_C error|", |r| r.configurational_temperature_error)
+        }
+        Observable::Viscosity => ("|eta error| vs baseline", |r| {
+            r.shear_viscosity_relative_error
+        }),
+    };
+    let panels = std::iter::once(observable).chain(PANELS);
+    for (area, (title, f)) in root.split_evenly((2, 2)).iter().zip(panels) {
         error_panel(area, results, title, f)?;
     }
     root.present()?;
