@@ -339,6 +339,7 @@ pub struct VerletList {
     shear: Option<LeesEdwards>,
     candidates: Vec<(u32, u32)>,
     groups: Runs,
+    grid: CellGrid,
     built: bool,
     builds: u64,
 }
@@ -352,6 +353,7 @@ impl VerletList {
             shear: None,
             candidates: Vec::new(),
             groups: Runs::default(),
+            grid: CellGrid::default(),
             built: false,
             builds: 0,
         }
@@ -394,17 +396,15 @@ impl VerletList {
     /// Build the list for positions `q`, whatever they moved.
     pub fn rebuild(&mut self, q: &[Vec3], bx: &PeriodicBox, shear: Option<&LeesEdwards>, rc: f64) {
         let reach = rc + self.skin;
-        // The grid is scratch of the build: dropped at its end, so it holds no memory between
-        // builds.
-        let mut grid = CellGrid::default();
-        grid.build(q, bx, reach);
+        self.grid.build(q, bx, reach);
         // Cells in sweep order (colour-major), scanned on all threads, joined in order.
-        let mut cells: Vec<usize> = (0..grid.cells()).collect();
-        cells.sort_by_key(|&c| grid.colour(c));
+        let mut cells: Vec<usize> = (0..self.grid.cells()).collect();
+        cells.sort_by_key(|&c| self.grid.colour(c));
         let mut per_colour = [0usize; COLOURS];
         for &c in &cells {
-            per_colour[grid.colour(c)] += 1;
+            per_colour[self.grid.colour(c)] += 1;
         }
+        let grid = &self.grid;
         let (candidates, found) = chunked::flat_map_ordered(&cells, |&c, out| {
             grid.for_each_pair_of_cell(c, bx, shear, reach, |i, j, _| out.push((i, j)))
         });
@@ -425,17 +425,18 @@ impl VerletList {
             self.end_colour();
         }
         if let Some(le) = shear.filter(|le| le.offset() != 0.0) {
-            for c in 0..grid.cells() {
-                if !grid.is_top_row(c) {
+            for c in 0..self.grid.cells() {
+                if !self.grid.is_top_row(c) {
                     continue;
                 }
                 let found = &mut self.candidates;
-                grid.for_each_sliding_pair_of_cell(c, bx, le, reach, |i, j, _| found.push((i, j)));
+                self.grid
+                    .for_each_sliding_pair_of_cell(c, bx, le, reach, |i, j, _| found.push((i, j)));
                 self.end_run();
             }
             self.end_colour();
         }
-        self.groups.independent = grid.is_coloured();
+        self.groups.independent = self.grid.is_coloured();
         self.reference.clear();
         self.reference.extend_from_slice(q);
         self.shear = shear.copied();
