@@ -1,7 +1,7 @@
 //! Checkpoint and restart.
 //!
 //! A checkpoint holds everything a step depends on: box, parameters, time step, random key,
-//! step counter, positions, momenta, masses, types, neighbour skin, the Lees-Edwards state
+//! step counter, positions, momenta, masses, types and ids in storage order, neighbour skin, the Lees-Edwards state
 //! (shear rate, offset, travel), the walls with their frozen particles, the body force, the positions and the Lees-Edwards state of the last
 //! neighbour-list build (which fix the sweep order and the next rebuild), the name of the
 //! scheme, and what a scheme carries between steps (the full forces of velocity Verlet, with
@@ -25,7 +25,7 @@ use std::io::Write;
 use std::path::Path;
 
 const MAGIC: &[u8; 8] = b"DPDCHKPT";
-const VERSION: u32 = 4;
+const VERSION: u32 = 5;
 const HEADER: usize = 8 + 4 + 8 + 4;
 
 #[derive(Serialize, Deserialize)]
@@ -41,6 +41,8 @@ struct Payload {
     p: Vec<Vec3>,
     mass: Vec<f64>,
     kind: Vec<u16>,
+    /// Particle ids in storage order (the order of the neighbour grid at the last build).
+    id: Vec<u32>,
     full_forces: Option<Vec<Vec3>>,
     /// Positions at the last neighbour-list build: the sweep order and the rebuild times
     /// depend on them (empty before the first build).
@@ -85,6 +87,7 @@ impl System {
             p: self.p.clone(),
             mass: self.mass.clone(),
             kind: self.kind.clone(),
+            id: self.id.clone(),
             full_forces: self.full_valid.then(|| self.full.clone()),
             list_reference: self.list.reference().to_vec(),
             shear: shear_state(self.shear.as_ref()),
@@ -172,6 +175,7 @@ impl System {
             .momenta(payload.p)
             .masses(payload.mass)
             .kinds(payload.kind)
+            .ids(payload.id)
             .dt(payload.dt)
             .seed(payload.seed)
             .skin(payload.skin);
@@ -195,9 +199,19 @@ impl System {
                     format!("must have {} entries", sys.len()),
                 )));
             }
+            // The reference positions were stored in cell order, so binning them again gives
+            // the identity order and the particles stay where the checkpoint put them.
             let rc = sys.params.rc();
-            sys.list
-                .rebuild(&payload.list_reference, &sys.bx, list_shear.as_ref(), rc);
+            let reference = &payload.list_reference;
+            let order = sys.list.bin(reference, &sys.bx, rc);
+            if order.iter().enumerate().any(|(k, &i)| i as usize != k) {
+                return Err(invalid(crate::ParamError::new(
+                    "list_reference",
+                    "positions not in the cell order of the neighbour grid",
+                    "the positions of the last list build, in storage order, as written by save_checkpoint",
+                )));
+            }
+            sys.list.build(reference, &sys.bx, list_shear.as_ref(), rc);
         }
         if let Some(full) = payload.full_forces {
             if full.len() != sys.len() {

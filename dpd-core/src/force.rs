@@ -53,6 +53,7 @@ fn full_with<const SHIFTED: bool, V: Virial>(sys: &mut System, stream: u8) -> V 
         ref p,
         ref inv_mass,
         ref kind,
+        ref id,
         ref params,
         ref mut full,
         seed,
@@ -72,7 +73,7 @@ fn full_with<const SHIFTED: bool, V: Virial>(sys: &mut System, stream: u8) -> V 
         let conservative = params.a(kind[i], kind[j]) * pair.w;
         let mut f = conservative - gamma * pair.wr * pair.wr * u;
         if noise > 0.0 {
-            f += noise * pair.wr * pair_normal(seed, step, stream, pair.i, pair.j);
+            f += noise * pair.wr * pair_normal(seed, step, stream, id[i], id[j]);
         }
         let fe = f * pair.e;
         // SAFETY: `visit` never hands two pairs sharing a particle to different threads.

@@ -1,5 +1,13 @@
 //! Neighbour search in O(N): a cell grid, and a Verlet list with a skin built from it.
 //!
+//! # Particle order
+//!
+//! The grid bins particles into cells and returns the cell order (a stable counting sort). A
+//! [`crate::System`] stores its particles in that order, re-sorted at every list build, so that
+//! the particles of a cell and of a row of cells along z are contiguous in memory: the cell
+//! scan reads positions sequentially and the pair loops touch nearby memory. Particles keep
+//! their identity through [`crate::System::ids`].
+//!
 //! # Sweep order
 //!
 //! The Verlet list fixes the order in which every pairwise sub-flow visits the pairs. Cells of
@@ -8,15 +16,18 @@
 //! `(cx mod 2, cy mod 3, cz mod 3)`: two cells of one colour are at least two cells apart
 //! along x or three along y or z, so the pairs they own share no particle and can be processed
 //! concurrently. The order is: colours 0..18, within a colour cells by ascending index, within
-//! a cell the pairs in scan order (own pairs `(a, b)` with `a < b` in cell order, then the
-//! stencil neighbours in a fixed order). Within a colour, cells commute, so this order gives the
-//! same result on any number of threads. Where the box is too small for the colouring (fewer
-//! than 4 cells along x or 3 along y or z, or counts that are not multiples of 2 and 3 after
-//! rounding down) there is one colour and processing is sequential.
+//! a cell the pairs in scan order: own pairs `(a, b)` with `a < b` in cell order, the cell
+//! above along z, then the rows `(dx, dy) = (0, 1), (1, -1), (1, 0), (1, 1)`, each row its
+//! cells `dz = -1, 0, 1` in storage order (one contiguous range unless the row wraps along z).
+//! Within a colour, cells commute, so this order gives the same result on any number of
+//! threads. Where the box is too small for the colouring (fewer than 4 cells along x or 3
+//! along y or z, or counts that are not multiples of 2 and 3 after rounding down) there is one
+//! colour and processing is sequential.
 //!
 //! The order is a function of the positions at the last build; a checkpoint stores those
 //! positions so that a restarted run rebuilds the same list. The list is rebuilt when a particle
-//! has moved more than `skin / 2` since the last build.
+//! has moved more than `skin / 2` since the last build; with skin 0 it is rebuilt whenever
+//! the positions changed, and keeps neither candidates nor reference positions.
 //!
 //! # Lees-Edwards
 //!
@@ -24,7 +35,7 @@
 //! boundary are misaligned along x. Then the cells of the top row (`cy = n_y - 1`) own all
 //! pairs with the images of the bottom row: for each `dz` the four image cells that overlap the
 //! x-range `[cx - 1, cx + 2)` cell widths, scanned in order of increasing x. The bottom row
-//! drops its three stencil entries that cross downwards. Two top-row cells of one colour may
+//! drops its stencil rows that cross downwards. Two top-row cells of one colour may
 //! reach the same bottom cell, so these crossing runs form an extra colour after the 18, visited
 //! sequentially (`Runs::colours` then has 19 groups). Everything else keeps the periodic order;
 //! with offset 0 (in particular shear rate 0) the list is exactly the periodic one. Positions
@@ -36,29 +47,39 @@
 use crate::boundary::{LeesEdwards, PeriodicBox};
 use crate::chunked;
 use crate::Vec3;
+use std::ops::Range;
 
-/// Particles binned into cells of edge at least `min_cell`.
+/// Particles binned into cells of edge at least `min_cell`, and the sweep over their pairs.
 #[derive(Clone, Debug, Default)]
 pub struct CellGrid {
     dims: [usize; 3],
     coloured: bool,
-    /// `cell_start[c]..cell_start[c + 1]` indexes `members` for cell `c`.
+    /// `cell_start[c]..cell_start[c + 1]`: cell-order indices of the particles of cell `c`.
     cell_start: Vec<u32>,
-    members: Vec<u32>,
+    /// Scratch of [`CellGrid::bin`]: the cell of each particle, in input order.
     cell_of: Vec<u32>,
-    /// Positions gathered in cell order.
-    sorted: Vec<Vec3>,
+    /// `order[k]`: input index of the k-th particle in cell order.
+    order: Vec<u32>,
+    /// Cells in sweep order (colour-major) and the number of cells of each colour; they depend
+    /// on `dims` only and are kept between builds.
+    sweep: Vec<u32>,
+    colour_cells: [usize; COLOURS],
 }
 
 /// Colours of the cell colouring, `2 * 3 * 3`.
 pub const COLOURS: usize = 18;
 
 impl CellGrid {
-    /// Bin `q` into cells of edge >= `min_cell`; cell counts are rounded down to multiples of
-    /// (2, 3, 3) where that keeps at least (4, 3, 3) cells, which makes the grid colourable. With
-    /// fewer than 3 cells along some axis the grid degenerates to one cell (all pairs are then
-    /// searched: O(N^2), only for boxes smaller than three cutoffs).
-    pub fn build(&mut self, q: &[Vec3], bx: &PeriodicBox, min_cell: f64) {
+    /// Bin `q` into cells of edge >= `min_cell` and return the cell order: `order[k]` is the
+    /// index in `q` of the k-th particle in cell order (cells by index, within a cell by index
+    /// in `q`). Cell counts are rounded down to multiples of (2, 3, 3) where that keeps at least
+    /// (4, 3, 3) cells, which makes the grid colourable. With fewer than 3 cells along some axis
+    /// the grid degenerates to one cell (all pairs are then searched: O(N^2), only for boxes
+    /// smaller than three cutoffs).
+    ///
+    /// The scans below read positions in this order: pass `q` permuted by `order` (as a
+    /// [`crate::System`] stores them after a build) or [`CellGrid::gather`]ed.
+    pub fn bin(&mut self, q: &[Vec3], bx: &PeriodicBox, min_cell: f64) -> &[u32] {
         let l = bx.lengths();
         let fit = |k: usize| {
             let n = (l[k] / min_cell).floor();
@@ -76,9 +97,12 @@ impl CellGrid {
         if coloured {
             dims = [dims[0] / 2 * 2, dims[1] / 3 * 3, dims[2] / 3 * 3];
         }
-        self.dims = dims;
-        self.coloured = coloured;
-        let ncell = dims[0] * dims[1] * dims[2];
+        if dims != self.dims || coloured != self.coloured || self.sweep.is_empty() {
+            self.dims = dims;
+            self.coloured = coloured;
+            self.plan_sweep();
+        }
+        let ncell = self.cells();
         self.cell_of.clear();
         self.cell_of.extend(q.iter().map(|x| {
             let mut c = 0usize;
@@ -97,16 +121,35 @@ impl CellGrid {
         for c in 0..ncell {
             self.cell_start[c + 1] += self.cell_start[c];
         }
-        let mut fill = self.cell_start.clone();
-        self.members.clear();
-        self.members.resize(q.len(), 0);
+        self.order.clear();
+        self.order.resize(q.len(), 0);
+        // Fill each cell from its start; `cell_start[c]` is advanced and then restored.
         for (i, &c) in self.cell_of.iter().enumerate() {
-            self.members[fill[c as usize] as usize] = i as u32;
-            fill[c as usize] += 1;
+            let slot = &mut self.cell_start[c as usize];
+            self.order[*slot as usize] = i as u32;
+            *slot += 1;
         }
-        self.sorted.clear();
-        self.sorted
-            .extend(self.members.iter().map(|&i| q[i as usize]));
+        for c in (1..=ncell).rev() {
+            self.cell_start[c] = self.cell_start[c - 1];
+        }
+        self.cell_start[0] = 0;
+        &self.order
+    }
+
+    /// Cells in sweep order for the current `dims`.
+    fn plan_sweep(&mut self) {
+        let mut cells: Vec<u32> = (0..self.cells() as u32).collect();
+        cells.sort_by_key(|&c| self.colour(c as usize));
+        self.colour_cells = [0; COLOURS];
+        for &c in &cells {
+            self.colour_cells[self.colour(c as usize)] += 1;
+        }
+        self.sweep = cells;
+    }
+
+    /// `q` permuted into the cell order of the last [`CellGrid::bin`].
+    pub fn gather(&self, q: &[Vec3]) -> Vec<Vec3> {
+        self.order.iter().map(|&i| q[i as usize]).collect()
     }
 
     /// Number of cells.
@@ -128,20 +171,20 @@ impl CellGrid {
         (cx % 2) * 9 + (cy % 3) * 3 + cz % 3
     }
 
-    /// Call `f(i, j, r2)` for every pair owned by cell `c` with squared minimum-image distance
-    /// `r2 < cutoff^2` (`cutoff` at most the cell edge of the last build), in scan order,
-    /// except the pairs that cross a sliding boundary (see
-    /// [`CellGrid::for_each_sliding_pair_of_cell`]).
+    /// Call `f(a, b, d)` for every pair owned by cell `c` whose minimum-image separation
+    /// `d = q_a - q_b` is shorter than `cutoff` (`cutoff` at most the cell edge of the last bin), in scan order, except
+    /// the pairs that cross a sliding boundary (see
+    /// [`CellGrid::for_each_sliding_pair_of_cell`]). `a`, `b` and `pos` are in cell order.
     ///
-    /// Positions are read in cell order, so the inner loop reads contiguous memory; periodic
-    /// images come from a per-neighbour shift instead of a minimum-image test per pair.
+    /// Periodic images come from a per-row shift instead of a minimum-image test per pair.
     pub fn for_each_pair_of_cell(
         &self,
         c: usize,
+        pos: &[Vec3],
         bx: &PeriodicBox,
         shear: Option<&LeesEdwards>,
         cutoff: f64,
-        mut f: impl FnMut(u32, u32, f64),
+        mut f: impl FnMut(u32, u32, Vec3),
     ) {
         let cut2 = cutoff * cutoff;
         let own = self.range(c);
@@ -152,19 +195,20 @@ impl CellGrid {
             };
             for a in own.clone() {
                 for b in a + 1..own.end {
-                    let r2 = image(self.sorted[a] - self.sorted[b]).norm_squared();
-                    if r2 < cut2 {
-                        f(self.members[a], self.members[b], r2);
+                    let d = image(pos[a] - pos[b]);
+                    if d.norm_squared() < cut2 {
+                        f(a as u32, b as u32, d);
                     }
                 }
             }
             return;
         }
         for a in own.clone() {
-            for b in a + 1..own.end {
-                let r2 = (self.sorted[a] - self.sorted[b]).norm_squared();
-                if r2 < cut2 {
-                    f(self.members[a], self.members[b], r2);
+            let qa = pos[a];
+            for (b, qb) in pos[a + 1..own.end].iter().enumerate() {
+                let d = qa - qb;
+                if d.norm_squared() < cut2 {
+                    f(a as u32, (a + 1 + b) as u32, d);
                 }
             }
         }
@@ -172,34 +216,42 @@ impl CellGrid {
         let [nx, ny, nz] = self.dims;
         let (cx, cy, cz) = self.coordinates(c);
         let l = bx.lengths();
-        for &[dx, dy, dz] in &HALF_STENCIL {
+        let (z, sz) = wrap_cell(cz, 1, nz, l.z);
+        let above = self.range((cx * ny + cy) * nz + z);
+        scan(pos, &own, above, Vec3::new(0.0, 0.0, sz), cut2, &mut f);
+        for [dx, dy] in ROWS {
             let (y, sy) = wrap_cell(cy, dy, ny, l.y);
             if sliding && sy != 0.0 {
                 continue;
             }
             let (x, sx) = wrap_cell(cx, dx, nx, l.x);
-            let (z, sz) = wrap_cell(cz, dz, nz, l.z);
-            self.scan(
-                &own,
-                (x * ny + y) * nz + z,
-                Vec3::new(sx, sy, sz),
-                cut2,
-                &mut f,
-            );
+            let row = (x * ny + y) * nz;
+            if cz >= 1 && cz + 1 < nz {
+                let cells =
+                    self.cell_start[row + cz - 1] as usize..self.cell_start[row + cz + 2] as usize;
+                scan(pos, &own, cells, Vec3::new(sx, sy, 0.0), cut2, &mut f);
+            } else {
+                for dz in [-1, 0, 1] {
+                    let (z, sz) = wrap_cell(cz, dz, nz, l.z);
+                    let cell = self.range(row + z);
+                    scan(pos, &own, cell, Vec3::new(sx, sy, sz), cut2, &mut f);
+                }
+            }
         }
     }
 
-    /// Call `f(i, j, r2)` for the pairs that cell `c` owns across a sliding Lees-Edwards
+    /// Call `f(a, b, d)` for the pairs that cell `c` owns across a sliding Lees-Edwards
     /// boundary (none unless `c` is in the top row and the offset is non-zero): pairs with the
     /// images, one box up, of the bottom row's cells that overlap the x-range
     /// `[cx - 1, cx + 2)` cell widths, for `dz` in -1, 0, 1 and those cells in order of x.
     pub fn for_each_sliding_pair_of_cell(
         &self,
         c: usize,
+        pos: &[Vec3],
         bx: &PeriodicBox,
         le: &LeesEdwards,
         cutoff: f64,
-        mut f: impl FnMut(u32, u32, f64),
+        mut f: impl FnMut(u32, u32, Vec3),
     ) {
         let [nx, ny, nz] = self.dims;
         let (cx, cy, cz) = self.coordinates(c);
@@ -219,52 +271,85 @@ impl CellGrid {
                 let k = big_k.rem_euclid(nx as isize) as usize;
                 let m = big_k.div_euclid(nx as isize) as f64;
                 let shift = Vec3::new(-(le.offset() + m * l.x), -l.y, sz);
-                self.scan(&own, k * ny * nz + z, shift, cut2, &mut f);
+                scan(pos, &own, self.range(k * ny * nz + z), shift, cut2, &mut f);
             }
         }
     }
 
-    /// Call `f(i, j, r2)` once for every unordered pair with `r2 < cutoff^2`, cell by cell.
+    /// Call `f(a, b, d)` once for every unordered pair closer than `cutoff`, cell by cell
+    /// (`a`, `b` and `pos` in cell order, `d` the minimum-image `q_a - q_b`).
     pub fn for_each_pair(
         &self,
+        pos: &[Vec3],
         bx: &PeriodicBox,
         shear: Option<&LeesEdwards>,
         cutoff: f64,
-        mut f: impl FnMut(u32, u32, f64),
+        mut f: impl FnMut(u32, u32, Vec3),
     ) {
         for c in 0..self.cells() {
-            self.for_each_pair_of_cell(c, bx, shear, cutoff, &mut f);
+            self.for_each_pair_of_cell(c, pos, bx, shear, cutoff, &mut f);
             if let Some(le) = shear {
-                self.for_each_sliding_pair_of_cell(c, bx, le, cutoff, &mut f);
+                self.for_each_sliding_pair_of_cell(c, pos, bx, le, cutoff, &mut f);
             }
         }
     }
 
-    /// Pairs between the particles `own` of a cell, moved by `shift`, and those of cell `other`.
-    #[inline(always)]
-    fn scan(
+    /// All pairs within `cutoff` in the sweep order of the module docs: `emit(a, b, d, out)`
+    /// is called for each (cell-order indices into `pos`, `d` the minimum-image `q_a - q_b`)
+    /// and may push any number of items into `out`. Cells are scanned on all threads and
+    /// joined in order, so the result does not depend on the thread count. `items` is
+    /// refilled (its allocation reused); returns the grouping into cell runs and colours.
+    pub fn sweep<T: Send>(
         &self,
-        own: &std::ops::Range<usize>,
-        other: usize,
-        shift: Vec3,
-        cut2: f64,
-        f: &mut impl FnMut(u32, u32, f64),
-    ) {
-        let other = self.range(other);
-        for a in own.clone() {
-            let qa = self.sorted[a] + shift;
-            for b in other.clone() {
-                let r2 = (qa - self.sorted[b]).norm_squared();
-                if r2 < cut2 {
-                    f(self.members[a], self.members[b], r2);
+        pos: &[Vec3],
+        bx: &PeriodicBox,
+        shear: Option<&LeesEdwards>,
+        cutoff: f64,
+        items: &mut Vec<T>,
+        emit: impl Fn(u32, u32, Vec3, &mut Vec<T>) + Sync,
+    ) -> Runs {
+        let found = chunked::flat_map_ordered(&self.sweep, items, |&c, out| {
+            self.for_each_pair_of_cell(c as usize, pos, bx, shear, cutoff, |a, b, d| {
+                emit(a, b, d, out)
+            })
+        });
+        let mut groups = Runs {
+            runs: vec![0],
+            colours: vec![0],
+            independent: self.coloured,
+        };
+        let mut found = found.into_iter();
+        let mut end = 0;
+        for count in self.colour_cells {
+            for n in found.by_ref().take(count) {
+                end += n;
+                if n > 0 {
+                    groups.runs.push(end);
                 }
             }
+            groups.colours.push(groups.runs.len() as u32 - 1);
         }
+        if let Some(le) = shear.filter(|le| le.offset() != 0.0) {
+            for c in 0..self.cells() {
+                if self.dims == [1, 1, 1] || self.coordinates(c).1 + 1 != self.dims[1] {
+                    continue;
+                }
+                self.for_each_sliding_pair_of_cell(c, pos, bx, le, cutoff, |a, b, d| {
+                    emit(a, b, d, items)
+                });
+                let end = items.len() as u32;
+                if end != *groups.runs.last().unwrap_or(&0) {
+                    groups.runs.push(end);
+                }
+            }
+            groups.colours.push(groups.runs.len() as u32 - 1);
+        }
+        groups
     }
 
-    /// Indices into `members` / `sorted` of the particles of cell `c`.
+    /// Cell-order indices of the particles of cell `c`.
     #[inline(always)]
-    fn range(&self, c: usize) -> std::ops::Range<usize> {
+    fn range(&self, c: usize) -> Range<usize> {
         self.cell_start[c] as usize..self.cell_start[c + 1] as usize
     }
 
@@ -274,10 +359,30 @@ impl CellGrid {
         let [_, ny, nz] = self.dims;
         (c / (ny * nz), (c / nz) % ny, c % nz)
     }
+}
 
-    /// Whether cell `c` is in the top row (`cy = n_y - 1`) of a grid of more than one cell.
-    fn is_top_row(&self, c: usize) -> bool {
-        self.dims != [1, 1, 1] && self.coordinates(c).1 + 1 == self.dims[1]
+/// Call `f(a, b, d)` for the pairs between the particles `own`, moved by `shift`, and the
+/// particles `other` (cell-order indices into `pos`) closer than `sqrt(cut2)`, with
+/// `d = q_a + shift - q_b`.
+#[inline(always)]
+fn scan(
+    pos: &[Vec3],
+    own: &Range<usize>,
+    other: Range<usize>,
+    shift: Vec3,
+    cut2: f64,
+    f: &mut impl FnMut(u32, u32, Vec3),
+) {
+    let start = other.start;
+    let others = &pos[other];
+    for a in own.clone() {
+        let qa = pos[a] + shift;
+        for (b, qb) in others.iter().enumerate() {
+            let d = qa - qb;
+            if d.norm_squared() < cut2 {
+                f(a as u32, (start + b) as u32, d);
+            }
+        }
     }
 }
 
@@ -287,23 +392,10 @@ fn is_sliding(shear: Option<&LeesEdwards>) -> bool {
     shear.is_some_and(|le| le.offset() != 0.0)
 }
 
-/// The 13 neighbour offsets of a half stencil: one of each pair `{d, -d}`, all with
-/// `dx` in `{0, 1}`.
-const HALF_STENCIL: [[isize; 3]; 13] = [
-    [1, 0, 0],
-    [1, 1, 0],
-    [1, -1, 0],
-    [0, 1, 0],
-    [1, 0, 1],
-    [1, 0, -1],
-    [0, 1, 1],
-    [0, 1, -1],
-    [1, 1, 1],
-    [1, 1, -1],
-    [1, -1, 1],
-    [1, -1, -1],
-    [0, 0, 1],
-];
+/// The rows `(dx, dy)` of the half stencil besides the own cell and the one above it: with the
+/// three cells `dz = -1, 0, 1` of each, and `(0, 0, 1)`, they are one of each pair `{d, -d}`
+/// of the 26 neighbour offsets.
+const ROWS: [[isize; 2]; 4] = [[0, 1], [1, -1], [1, 0], [1, 1]];
 
 /// Cell index `c + d` on a periodic axis of `n` cells, and the shift to add to a position in
 /// cell `c` so that it sits next to the (unwrapped) image of cell `c + d`.
@@ -331,6 +423,11 @@ pub struct Runs {
 }
 
 /// Verlet list with a skin, in sweep order, rebuilt on displacement.
+///
+/// A build has two halves: [`VerletList::bin`] bins the positions and returns the cell order,
+/// the owner puts its particles in that order, then [`VerletList::build`] scans them. With skin
+/// 0 the list keeps no candidates: the owner takes the pairs straight from
+/// [`VerletList::grid`]'s sweep.
 #[derive(Clone, Debug)]
 pub struct VerletList {
     skin: f64,
@@ -340,6 +437,8 @@ pub struct VerletList {
     candidates: Vec<(u32, u32)>,
     groups: Runs,
     grid: CellGrid,
+    /// Whether a build matches the positions (with skin 0 cleared by
+    /// [`VerletList::positions_changed`]; with a skin the displacement test decides).
     built: bool,
     builds: u64,
 }
@@ -368,7 +467,7 @@ impl VerletList {
         self.builds
     }
 
-    /// Positions of the last build (empty before the first).
+    /// Positions of the last build (empty before the first, and always with skin 0).
     pub fn reference(&self) -> &[Vec3] {
         &self.reference
     }
@@ -378,88 +477,55 @@ impl VerletList {
         self.shear.as_ref()
     }
 
-    /// Rebuild if needed for positions `q` and cutoff `rc`; returns whether it rebuilt.
-    pub fn update(
-        &mut self,
-        q: &[Vec3],
-        bx: &PeriodicBox,
-        shear: Option<&LeesEdwards>,
-        rc: f64,
-    ) -> bool {
-        let rebuild = self.needs_rebuild(q, bx, shear);
-        if rebuild {
-            self.rebuild(q, bx, shear, rc);
-        }
-        rebuild
+    /// The grid of the last build.
+    pub fn grid(&self) -> &CellGrid {
+        &self.grid
     }
 
-    /// Build the list for positions `q`, whatever they moved.
-    pub fn rebuild(&mut self, q: &[Vec3], bx: &PeriodicBox, shear: Option<&LeesEdwards>, rc: f64) {
-        let reach = rc + self.skin;
-        self.grid.build(q, bx, reach);
-        // Cells in sweep order (colour-major), scanned on all threads, joined in order.
-        let mut cells: Vec<usize> = (0..self.grid.cells()).collect();
-        cells.sort_by_key(|&c| self.grid.colour(c));
-        let mut per_colour = [0usize; COLOURS];
-        for &c in &cells {
-            per_colour[self.grid.colour(c)] += 1;
+    /// First half of a build: bin `q` for cutoff `rc` and return the cell order (see
+    /// [`CellGrid::bin`]).
+    pub fn bin(&mut self, q: &[Vec3], bx: &PeriodicBox, rc: f64) -> &[u32] {
+        self.grid.bin(q, bx, rc + self.skin)
+    }
+
+    /// Second half of a build, after [`VerletList::bin`]: `q` are the positions in the cell
+    /// order it returned. Candidate indices are indices into `q`.
+    pub fn build(&mut self, q: &[Vec3], bx: &PeriodicBox, shear: Option<&LeesEdwards>, rc: f64) {
+        if self.skin > 0.0 {
+            let push = |a, b, _, out: &mut Vec<(u32, u32)>| out.push((a, b));
+            let reach = rc + self.skin;
+            self.groups = self
+                .grid
+                .sweep(q, bx, shear, reach, &mut self.candidates, push);
+            self.reference.clear();
+            self.reference.extend_from_slice(q);
         }
-        let grid = &self.grid;
-        let (candidates, found) = chunked::flat_map_ordered(&cells, |&c, out| {
-            grid.for_each_pair_of_cell(c, bx, shear, reach, |i, j, _| out.push((i, j)))
-        });
-        self.candidates = candidates;
-        self.groups.runs.clear();
-        self.groups.colours.clear();
-        self.groups.runs.push(0);
-        self.groups.colours.push(0);
-        let mut found = found.into_iter();
-        let mut end = 0;
-        for count in per_colour {
-            for n in found.by_ref().take(count) {
-                end += n;
-                if n > 0 {
-                    self.groups.runs.push(end);
-                }
-            }
-            self.end_colour();
-        }
-        if let Some(le) = shear.filter(|le| le.offset() != 0.0) {
-            for c in 0..self.grid.cells() {
-                if !self.grid.is_top_row(c) {
-                    continue;
-                }
-                let found = &mut self.candidates;
-                self.grid
-                    .for_each_sliding_pair_of_cell(c, bx, le, reach, |i, j, _| found.push((i, j)));
-                self.end_run();
-            }
-            self.end_colour();
-        }
-        self.groups.independent = self.grid.is_coloured();
-        self.reference.clear();
-        self.reference.extend_from_slice(q);
         self.shear = shear.copied();
         self.built = true;
         self.builds += 1;
     }
 
-    /// Close the current cell's run, unless it is empty.
-    fn end_run(&mut self) {
-        let end = self.candidates.len() as u32;
-        if end != *self.groups.runs.last().unwrap_or(&0) {
-            self.groups.runs.push(end);
+    /// The positions moved: with skin 0 the list is stale.
+    pub fn positions_changed(&mut self) {
+        if self.skin == 0.0 {
+            self.built = false;
         }
     }
 
-    /// Close the current colour.
-    fn end_colour(&mut self) {
-        self.groups.colours.push(self.groups.runs.len() as u32 - 1);
+    /// Forget the build (the particle order it refers to is gone).
+    pub fn invalidate(&mut self) {
+        self.built = false;
     }
 
-    /// Whether [`VerletList::update`] would rebuild for positions `q`.
+    /// Whether the list must be rebuilt for positions `q`.
     pub fn needs_rebuild(&self, q: &[Vec3], bx: &PeriodicBox, shear: Option<&LeesEdwards>) -> bool {
-        if !self.built || q.len() != self.reference.len() {
+        if !self.built {
+            return true;
+        }
+        if self.skin == 0.0 {
+            return shear.map(LeesEdwards::offset) != self.shear.as_ref().map(LeesEdwards::offset);
+        }
+        if q.len() != self.reference.len() {
             return true;
         }
         match (shear, &self.shear) {
@@ -482,7 +548,7 @@ impl VerletList {
         })
     }
 
-    /// Candidate pairs within `r_c + skin` at the last build, in sweep order.
+    /// Candidate pairs within `r_c + skin` at the last build, in sweep order (none with skin 0).
     pub fn candidates(&self) -> &[(u32, u32)] {
         &self.candidates
     }
@@ -508,6 +574,19 @@ mod tests {
             }
         }
         v
+    }
+
+    /// Both halves of a build, as a system does them; returns the positions in cell order.
+    fn build(
+        list: &mut VerletList,
+        q: &[Vec3],
+        bx: &PeriodicBox,
+        shear: Option<&LeesEdwards>,
+    ) -> Vec<Vec3> {
+        list.bin(q, bx, 1.0);
+        let pos = list.grid().gather(q);
+        list.build(&pos, bx, shear, 1.0);
+        pos
     }
 
     /// The list holds exactly the brute-force pairs, and runs of one of the first `COLOURS`
@@ -542,13 +621,27 @@ mod tests {
     }
 
     #[test]
+    fn cell_order_is_a_stable_sort_by_cell() {
+        let bx = PeriodicBox::new([7.0, 9.1, 6.3]).unwrap();
+        let q = uniform_positions(&bx, 500, 3);
+        let mut grid = CellGrid::default();
+        let order = grid.bin(&q, &bx, 1.3).to_vec();
+        let mut seen = order.clone();
+        seen.sort_unstable();
+        assert_eq!(seen, (0..500).collect::<Vec<u32>>());
+        // Binning the sorted positions again gives the identity.
+        let pos = grid.gather(&q);
+        assert_eq!(grid.bin(&pos, &bx, 1.3), (0..500).collect::<Vec<u32>>());
+    }
+
+    #[test]
     fn verlet_list_matches_brute_force_and_colours_are_disjoint() {
         for (l, coloured) in [(2.5, false), (4.2, false), (7.0, true), (9.5, true)] {
             let bx = PeriodicBox::new([l, l * 1.3, l * 0.9]).unwrap();
             let q = uniform_positions(&bx, 400, 1);
             let mut list = VerletList::new(0.3);
-            list.update(&q, &bx, None, 1.0);
-            let expected = brute(&q, 1.3, |d| bx.min_image(d));
+            let pos = build(&mut list, &q, &bx, None);
+            let expected = brute(&pos, 1.3, |d| bx.min_image(d));
             check_list(&list, expected, coloured, &format!("box {l}"));
             assert_eq!(list.groups().colours.len(), COLOURS + 1);
         }
@@ -572,8 +665,8 @@ mod tests {
             for offset in [0.0, 1e-9, 0.37 * l, 0.999 * l] {
                 let le = LeesEdwards::restore(0.3, offset, 0.0, &bx).unwrap();
                 let mut list = VerletList::new(0.3);
-                list.update(&q, &bx, Some(&le), 1.0);
-                let expected = brute(&q, 1.3, |d| le.min_image(&bx, d).0);
+                let pos = build(&mut list, &q, &bx, Some(&le));
+                let expected = brute(&pos, 1.3, |d| le.min_image(&bx, d).0);
                 check_list(
                     &list,
                     expected,
@@ -591,11 +684,24 @@ mod tests {
         let bx = PeriodicBox::cubic(5.0).unwrap();
         let mut q = vec![Vec3::new(1.0, 1.0, 1.0), Vec3::new(2.0, 1.0, 1.0)];
         let mut list = VerletList::new(0.4);
-        assert!(list.update(&q, &bx, None, 1.0));
+        assert!(list.needs_rebuild(&q, &bx, None));
+        build(&mut list, &q, &bx, None);
         q[0].x += 0.19;
-        assert!(!list.update(&q, &bx, None, 1.0));
+        assert!(!list.needs_rebuild(&q, &bx, None));
         q[0].x += 0.02;
-        assert!(list.update(&q, &bx, None, 1.0));
+        assert!(list.needs_rebuild(&q, &bx, None));
+    }
+
+    #[test]
+    fn without_skin_rebuilds_when_positions_change() {
+        let bx = PeriodicBox::cubic(5.0).unwrap();
+        let q = vec![Vec3::new(1.0, 1.0, 1.0), Vec3::new(2.0, 1.0, 1.0)];
+        let mut list = VerletList::new(0.0);
+        build(&mut list, &q, &bx, None);
+        assert!(!list.needs_rebuild(&q, &bx, None));
+        assert!(list.candidates().is_empty() && list.reference().is_empty());
+        list.positions_changed();
+        assert!(list.needs_rebuild(&q, &bx, None));
     }
 
     #[test]
@@ -606,11 +712,11 @@ mod tests {
         let mut le = LeesEdwards::new(0.1).unwrap();
         let mut q = vec![Vec3::new(1.0, 1.0, 1.0), Vec3::new(2.0, 1.0, 1.0)];
         let mut list = VerletList::new(0.4);
-        assert!(list.update(&q, &bx, Some(&le), 1.0));
+        build(&mut list, &q, &bx, Some(&le));
         le.advance(&bx, 0.2);
         q[0].x += 0.04;
-        assert!(!list.update(&q, &bx, Some(&le), 1.0));
+        assert!(!list.needs_rebuild(&q, &bx, Some(&le)));
         q[0].x += 0.02;
-        assert!(list.update(&q, &bx, Some(&le), 1.0));
+        assert!(list.needs_rebuild(&q, &bx, Some(&le)));
     }
 }

@@ -71,7 +71,9 @@ impl<'a> IntoIterator for &'a PairTable {
 }
 
 impl PairTable {
-    /// Refill with the pairs of `list` that interact at positions `q`, keeping its order.
+    /// Refill with the pairs of `list` that interact at positions `q`, keeping its order: from
+    /// the list's candidates, or with skin 0 straight from the scan of its grid (then `q` must
+    /// be in the cell order of its last build, as a [`crate::System`] keeps it).
     ///
     /// Coincident particles (`r = 0`) have no defined direction; such a pair is left out, so it
     /// exerts no force rather than a NaN one.
@@ -84,73 +86,119 @@ impl PairTable {
         walls: Option<&FrozenWalls>,
         params: &Params,
     ) {
+        let fill = Fill {
+            list,
+            q,
+            bx,
+            shear,
+            params,
+        };
         match (shear, walls) {
-            (None, None) => {
-                self.collect_with(list, q, params, |_, _, d| Some((bx.min_image(d), 0.0)))
-            }
+            (None, None) => fill.into(
+                self,
+                |_, _, d| Some((bx.min_image(d), 0.0)),
+                |_, _, d| Some((d, 0.0)),
+            ),
+            // The scan's separation is the image, but the velocity shift needs the crossing
+            // count: recompute both.
             (Some(le), _) => {
-                self.collect_with(list, q, params, |_, _, d| Some(le.min_image(bx, d)))
+                let image = |_, _, d| Some(le.min_image(bx, d));
+                let rescan =
+                    |i: u32, j: u32, _| Some(le.min_image(bx, q[i as usize] - q[j as usize]));
+                fill.into(self, image, rescan)
             }
-            (None, Some(w)) => self.collect_with(list, q, params, |i, j, d| {
-                let (i, j) = (i as usize, j as usize);
-                (!(w.frozen[i] && w.frozen[j]))
-                    .then(|| (bx.min_image(d), w.velocity_x[i] - w.velocity_x[j]))
-            }),
+            (None, Some(w)) => {
+                let shift = |i: u32, j: u32, d: Vec3| {
+                    let (i, j) = (i as usize, j as usize);
+                    (!(w.frozen[i] && w.frozen[j])).then(|| (d, w.velocity_x[i] - w.velocity_x[j]))
+                };
+                fill.into(self, |i, j, d| shift(i, j, bx.min_image(d)), shift)
+            }
         }
     }
+}
 
-    /// [`PairTable::collect`] with `image(i, j, q_i - q_j)` giving the minimum image and the
-    /// velocity shift, or `None` for a pair that does not interact (two frozen particles).
+/// What [`PairTable::collect`] fills from.
+struct Fill<'a> {
+    list: &'a VerletList,
+    q: &'a [Vec3],
+    bx: &'a PeriodicBox,
+    shear: Option<&'a LeesEdwards>,
+    params: &'a Params,
+}
+
+impl Fill<'_> {
+    /// Fill `table`: from the candidates with `image(i, j, q_i - q_j)` giving the minimum image
+    /// and the velocity shift, or `None` for a pair that does not interact (two frozen
+    /// particles); without skin from the grid's scan, with `scanned(i, j, d)` doing the same
+    /// for the scan's minimum-image separation `d`.
     #[inline(always)]
-    fn collect_with(
-        &mut self,
-        list: &VerletList,
-        q: &[Vec3],
-        params: &Params,
+    fn into(
+        self,
+        table: &mut PairTable,
         image: impl Fn(u32, u32, Vec3) -> Option<(Vec3, f64)> + Sync,
+        scanned: impl Fn(u32, u32, Vec3) -> Option<(Vec3, f64)> + Sync,
     ) {
+        let Fill {
+            list,
+            q,
+            bx,
+            shear,
+            params,
+        } = self;
         let rc = params.rc();
         let rc2 = rc * rc;
         let inv_rc = 1.0 / rc;
+        let pair = |i: u32, j: u32, (d, dvx): (Vec3, f64)| -> Option<Pair> {
+            let r2 = d.norm_squared();
+            (r2 < rc2 && r2 > 0.0).then(|| {
+                let r = r2.sqrt();
+                let w = 1.0 - r * inv_rc;
+                Pair {
+                    i,
+                    j,
+                    e: d * (1.0 / r),
+                    r,
+                    w,
+                    wr: params.w_r(w),
+                    dvx,
+                }
+            })
+        };
+        if list.skin() == 0.0 {
+            table.groups = list
+                .grid()
+                .sweep(q, bx, shear, rc, &mut table.pairs, |i, j, d, out| {
+                    out.extend(scanned(i, j, d).and_then(|g| pair(i, j, g)))
+                });
+            return;
+        }
         let from = list.groups();
         let runs: Vec<&[(u32, u32)]> = from
             .runs
             .windows(2)
             .map(|run| &list.candidates()[run[0] as usize..run[1] as usize])
             .collect();
-        let (pairs, kept) = chunked::flat_map_ordered(&runs, |run, out| {
+        let kept = chunked::flat_map_ordered(&runs, &mut table.pairs, |run, out| {
             for &(i, j) in *run {
-                let Some((d, dvx)) = image(i, j, q[i as usize] - q[j as usize]) else {
-                    continue;
-                };
-                let r2 = d.norm_squared();
-                if r2 < rc2 && r2 > 0.0 {
-                    let r = r2.sqrt();
-                    let w = 1.0 - r * inv_rc;
-                    out.push(Pair {
-                        i,
-                        j,
-                        e: d / r,
-                        r,
-                        w,
-                        wr: params.w_r(w),
-                        dvx,
-                    });
-                }
+                let d = q[i as usize] - q[j as usize];
+                out.extend(image(i, j, d).and_then(|g| pair(i, j, g)));
             }
         });
-        self.pairs = pairs;
-        self.groups.runs.clear();
-        self.groups.runs.push(0);
+        let groups = &mut table.groups;
+        groups.runs.clear();
+        groups.runs.push(0);
         let mut end = 0;
         for n in kept {
             end += n;
-            self.groups.runs.push(end);
+            groups.runs.push(end);
         }
-        self.groups.colours.clone_from(&from.colours);
-        self.groups.independent = from.independent;
+        groups.colours.clone_from(&from.colours);
+        groups.independent = from.independent;
     }
+}
 
+impl PairTable {
     /// Visit every pair once in the sweep order (`Forward`), or in exactly the reverse order
     /// (`Reverse`). Runs of one colour go to different threads when the grid is coloured and
     /// the table is large; they touch disjoint particles, so the result is the same as the

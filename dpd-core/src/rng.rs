@@ -1,7 +1,8 @@
 //! Counter-based pair random numbers.
 //!
 //! Every random number a pair receives is a pure function of the key
-//! `(seed, step, stream, min(i, j), max(i, j))`: it does not depend on the layout of the pair
+//! `(seed, step, stream, min(i, j), max(i, j))` of the particle ids `i`, `j` ([`crate::System::ids`]):
+//! it does not depend on where the particles are stored, on the layout of the pair
 //! list, on when the list was built, or on the number of threads. The generator is
 //! Philox4x32-10 (Salmon, Moraes, Dror and Shaw, "Parallel random numbers: as easy as 1, 2, 3",
 //! SC 2011), written here by hand because no maintained crate of the rand family provides a

@@ -14,6 +14,10 @@ use dpd_ir::{Diagnostic, Flow, Options, Program, Stage};
 /// Implemented by the zero-sized types that `dpd_scheme!` generates (straight-line calls of the
 /// sub-flows), by [`DynScheme`] (the same stages walked at run time) and by hand-written
 /// methods. Use [`System::advance`] to step with blow-up detection.
+///
+/// A hand-written step that keeps per-particle data across sub-flow calls must key it by
+/// [`System::ids`]: any sub-flow that evaluates pairs may rebuild the neighbour list, which
+/// re-sorts the particles.
 pub trait Scheme {
     /// Short name used in reports and errors.
     fn name(&self) -> &str;
@@ -117,6 +121,8 @@ impl Scheme for DynScheme {
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Backup {
     q: Vec<Vec3>,
+    /// Particle ids in storage order before the step (a step may re-sort the particles).
+    id: Vec<u32>,
     p: Vec<Vec3>,
     full: Vec<Vec3>,
     full_valid: bool,
@@ -144,6 +150,7 @@ impl System {
     ) -> Result<(), BlowUp> {
         backup.q.clone_from(&self.q);
         backup.p.clone_from(&self.p);
+        backup.id.clone_from(&self.id);
         backup.full_valid = self.full_valid;
         if self.full_valid {
             backup.full.clone_from(&self.full);
@@ -178,6 +185,7 @@ impl System {
             Some(reason) => {
                 std::mem::swap(&mut self.q, &mut backup.q);
                 std::mem::swap(&mut self.p, &mut backup.p);
+                self.restore_order(&backup.id);
                 self.positions_changed();
                 if backup.full_valid {
                     std::mem::swap(&mut self.full, &mut backup.full);

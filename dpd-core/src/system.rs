@@ -9,6 +9,7 @@ use crate::pairs::{Pair, PairTable};
 use crate::params::Params;
 use crate::walls::{FrozenWalls, Walls};
 use crate::{Tensor, Vec3};
+use rayon::prelude::*;
 
 /// Default Verlet skin in units of length.
 pub const DEFAULT_SKIN: f64 = 0.3;
@@ -26,6 +27,12 @@ pub struct Counters {
 /// Positions, momenta, masses and types of N particles in a periodic box (optionally with
 /// Lees-Edwards sliding boundaries), the interaction parameters, the time step and the
 /// random-number key, plus evaluation caches.
+///
+/// Particles are stored in the cell order of the neighbour grid and re-sorted at every
+/// neighbour-list build (see [`crate::neighbour`]): every per-particle array (positions,
+/// momenta, masses, types, [`System::ids`], frozen flags) is permuted together, and
+/// [`System::ids`] tells which particle is where. The pair random numbers are keyed by ids, so
+/// the noise a pair receives does not depend on where its particles are stored.
 ///
 /// Caches are tied to the positions: the pair geometry, the conservative forces and the full
 /// forces (with their noise) are computed at most once per set of positions and are dropped by
@@ -50,6 +57,8 @@ pub struct System {
     pub(crate) mass: Vec<f64>,
     pub(crate) inv_mass: Vec<f64>,
     pub(crate) kind: Vec<u16>,
+    /// Identity of each stored particle: its index at construction.
+    pub(crate) id: Vec<u32>,
     pub(crate) dt: f64,
     pub(crate) seed: u64,
     pub(crate) step: u64,
@@ -81,6 +90,7 @@ pub struct SystemBuilder {
     p: Option<Vec<Vec3>>,
     mass: Option<Vec<f64>>,
     kind: Option<Vec<u16>>,
+    id: Option<Vec<u32>>,
     dt: f64,
     seed: u64,
     skin: f64,
@@ -104,6 +114,12 @@ impl SystemBuilder {
     /// Per-particle types, indices into the `a` matrix (default: all 0).
     pub fn kinds(mut self, k: Vec<u16>) -> Self {
         self.kind = Some(k);
+        self
+    }
+    /// Particle identities, a permutation of `0..N` (default: `0, 1, ..., N - 1`): a checkpoint
+    /// restores them with the particles in their stored order.
+    pub fn ids(mut self, id: Vec<u32>) -> Self {
+        self.id = Some(id);
         self
     }
     pub fn dt(mut self, dt: f64) -> Self {
@@ -161,16 +177,28 @@ impl SystemBuilder {
         let p = self.p.unwrap_or_else(|| vec![Vec3::zeros(); n]);
         let mass = self.mass.unwrap_or_else(|| vec![1.0; n]);
         let kind = self.kind.unwrap_or_else(|| vec![0; n]);
+        let id = self.id.unwrap_or_else(|| (0..n as u32).collect());
         for (name, len) in [
             ("momenta", p.len()),
             ("masses", mass.len()),
             ("kinds", kind.len()),
+            ("ids", id.len()),
         ] {
             if len != n {
                 return Err(ParamError::new(
                     name,
                     format!("{len} entries"),
                     format!("must have one entry per particle ({n})"),
+                ));
+            }
+        }
+        let mut seen = vec![false; n];
+        for (k, &i) in id.iter().enumerate() {
+            if i as usize >= n || std::mem::replace(&mut seen[i as usize], true) {
+                return Err(ParamError::new(
+                    format!("ids[{k}]"),
+                    i,
+                    format!("ids must be a permutation of 0..{n}: each of 0..{n} exactly once"),
                 ));
             }
         }
@@ -264,6 +292,7 @@ impl SystemBuilder {
             mass,
             inv_mass,
             kind,
+            id,
             dt,
             seed: self.seed,
             step: 0,
@@ -295,6 +324,7 @@ impl System {
             p: None,
             mass: None,
             kind: None,
+            id: None,
             dt: 0.01,
             seed: 0,
             skin: DEFAULT_SKIN,
@@ -360,6 +390,11 @@ impl System {
     }
     pub fn kinds(&self) -> &[u16] {
         &self.kind
+    }
+    /// Identity of each stored particle (its index at construction); the storage order
+    /// changes at neighbour-list builds, the identities travel with the particles.
+    pub fn ids(&self) -> &[u32] {
+        &self.id
     }
     /// Time step.
     pub fn dt(&self) -> f64 {
@@ -432,6 +467,7 @@ impl System {
         self.pairs_valid = false;
         self.conservative_valid = false;
         self.full_valid = false;
+        self.list.positions_changed();
     }
 
     /// The interacting pairs at the current positions, in the sweep order documented in
@@ -449,13 +485,17 @@ impl System {
 
     pub(crate) fn ensure_pairs(&mut self) {
         if !self.pairs_valid {
-            let shear = self.shear.as_ref();
-            self.list.update(&self.q, &self.bx, shear, self.params.rc());
+            if self
+                .list
+                .needs_rebuild(&self.q, &self.bx, self.shear.as_ref())
+            {
+                self.rebuild_list();
+            }
             self.pairs.collect(
                 &self.list,
                 &self.q,
                 &self.bx,
-                shear,
+                self.shear.as_ref(),
                 self.walls.as_ref(),
                 &self.params,
             );
@@ -477,20 +517,60 @@ impl System {
             self.ensure_conservative();
             return f(self, &self.pairs, &self.conservative);
         }
-        let mut list = VerletList::new(0.0);
-        list.rebuild(&self.q, &self.bx, shear, self.params.rc());
-        let mut pairs = PairTable::default();
-        pairs.collect(
-            &list,
-            &self.q,
-            &self.bx,
-            shear,
-            self.walls.as_ref(),
-            &self.params,
-        );
-        let mut forces = Vec::new();
-        force::conservative(&pairs, &self.params, &self.kind, &mut forces);
-        f(self, &pairs, &forces)
+        // A copy, sorted and listed on its own (without skin, nothing but the pairs).
+        let backup = std::mem::take(&mut self.backup);
+        let mut scratch = self.clone();
+        self.backup = backup;
+        scratch.list = VerletList::new(0.0);
+        scratch.pairs_valid = false;
+        scratch.ensure_conservative();
+        f(&scratch, &scratch.pairs, &scratch.conservative)
+    }
+
+    /// Re-sort the particles into the cell order of a fresh grid and build the list on them.
+    fn rebuild_list(&mut self) {
+        let order = self.list.bin(&self.q, &self.bx, self.params.rc());
+        permute(&mut self.q, order);
+        permute(&mut self.p, order);
+        permute(&mut self.mass, order);
+        permute(&mut self.inv_mass, order);
+        permute(&mut self.kind, order);
+        permute(&mut self.id, order);
+        if let Some(w) = &mut self.walls {
+            permute(&mut w.frozen, order);
+            permute(&mut w.velocity_x, order);
+        }
+        if self.conservative_valid {
+            permute(&mut self.conservative, order);
+        }
+        if self.full_valid {
+            permute(&mut self.full, order);
+        }
+        self.list
+            .build(&self.q, &self.bx, self.shear.as_ref(), self.params.rc());
+    }
+
+    /// Put the particles back into the storage order of `ids` (a permutation of the current
+    /// ids), e.g. the order before a step that is being undone. Positions, momenta and the
+    /// caches are left to the caller; the list is dropped.
+    pub(crate) fn restore_order(&mut self, ids: &[u32]) {
+        if self.id == ids {
+            return;
+        }
+        let mut at = vec![0u32; self.id.len()];
+        for (k, &i) in self.id.iter().enumerate() {
+            at[i as usize] = k as u32;
+        }
+        let order: Vec<u32> = ids.iter().map(|&i| at[i as usize]).collect();
+        permute(&mut self.mass, &order);
+        permute(&mut self.inv_mass, &order);
+        permute(&mut self.kind, &order);
+        permute(&mut self.id, &order);
+        if let Some(w) = &mut self.walls {
+            permute(&mut w.frozen, &order);
+            permute(&mut w.velocity_x, &order);
+        }
+        self.list.invalidate();
     }
 
     pub(crate) fn ensure_conservative(&mut self) {
@@ -517,4 +597,17 @@ impl System {
             self.counters.force_evaluations += 1;
         }
     }
+}
+
+/// Below this many particles a permutation is not split across threads.
+const PARALLEL_MIN_PARTICLES: usize = 16_384;
+
+/// `v[k] <- v[order[k]]`.
+fn permute<T: Copy + Send + Sync>(v: &mut Vec<T>, order: &[u32]) {
+    let sorted: Vec<T> = if v.len() >= PARALLEL_MIN_PARTICLES {
+        order.par_iter().map(|&i| v[i as usize]).collect()
+    } else {
+        order.iter().map(|&i| v[i as usize]).collect()
+    };
+    *v = sorted;
 }

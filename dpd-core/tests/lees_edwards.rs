@@ -49,9 +49,10 @@ fn zero_shear_rate_is_the_periodic_run_bitwise() {
 /// Momentum across the sliding boundary: pair updates change `p_i` and `p_j` by opposite
 /// amounts, and a particle wrapped across y trades `m kappa L_y` of x-momentum for `L_y` of
 /// height, so `P_y` and `sum_i (p_i,x - m_i kappa y_i)` are invariant (the latter changes by
-/// `-kappa h P_y` per drift, and `P_y = 0`). Both hold to rounding error over 1000 steps (the images slide
-/// by 14 box lengths) with unequal masses and two particle types, for every pairwise
-/// sub-flow. (Without a thermostat, B alone heats up under shear; 1000 steps stay stable.)
+/// `-kappa h P_y` per drift, and `P_y = 0`). Both hold to rounding error over 600 steps (the images slide
+/// by 8 box lengths) with unequal masses and two particle types, for every pairwise
+/// sub-flow. (Without a thermostat, B alone heats up under shear: one realisation blew up
+/// after 935 steps.)
 #[test]
 fn pair_updates_across_the_sliding_boundary_conserve_momentum() {
     let kappa = 0.7;
@@ -96,7 +97,7 @@ fn pair_updates_across_the_sliding_boundary_conserve_momentum() {
             (x, s.total_momentum().y)
         };
         let (x0, y0) = invariant(&sys);
-        sys.advance(&flow, 1000).unwrap();
+        sys.advance(&flow, 600).unwrap();
         let (x1, y1) = invariant(&sys);
         assert!(sys.shear().unwrap().offset() > 0.0);
         let scale: f64 = sys.momenta().iter().map(|p| p.norm()).sum();

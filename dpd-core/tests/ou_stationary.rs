@@ -34,13 +34,18 @@ fn isolated_pairs(pairs: usize, gamma: f64, dt: f64, seed: u64) -> System {
         .unwrap()
 }
 
-/// Mean square of the relative normal velocity over all pairs.
+/// Mean square of the relative normal velocity over all pairs (particles `2k` and `2k + 1`
+/// by id; the storage order changes at list builds).
 fn mean_square_u(sys: &System) -> f64 {
     let (q, p, m) = (sys.positions(), sys.momenta(), sys.masses());
+    let mut at = vec![0; sys.len()];
+    for (k, &id) in sys.ids().iter().enumerate() {
+        at[id as usize] = k;
+    }
     let n = sys.len() / 2;
     (0..n)
         .map(|k| {
-            let (i, j) = (2 * k, 2 * k + 1);
+            let (i, j) = (at[2 * k], at[2 * k + 1]);
             let e = sys.boundary().min_image(q[i] - q[j]).normalize();
             let u = e.dot(&(p[i] / m[i] - p[j] / m[j]));
             u * u

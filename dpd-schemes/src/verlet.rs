@@ -3,7 +3,7 @@
 
 use dpd_core::error::ParamError;
 use dpd_core::flow::{drift, full_force};
-use dpd_core::{Scheme, System};
+use dpd_core::{Scheme, System, Vec3};
 use dpd_macros::dpd_scheme;
 
 /// Velocity Verlet for DPD (Groot-Warren with lambda = 1/2).
@@ -66,6 +66,23 @@ impl GrootWarren {
     }
 }
 
+/// The momenta indexed by particle id.
+fn by_id(sys: &System) -> Vec<Vec3> {
+    let mut p = vec![Vec3::zeros(); sys.len()];
+    for (&id, &pi) in sys.ids().iter().zip(sys.momenta()) {
+        p[id as usize] = pi;
+    }
+    p
+}
+
+/// `p_i += sign * shift[id_i]`.
+fn add_by_id(sys: &mut System, shift: &[Vec3], sign: f64) {
+    let ids = sys.ids().to_vec();
+    for (id, p) in ids.into_iter().zip(sys.momenta_mut()) {
+        *p += sign * shift[id as usize];
+    }
+}
+
 impl Scheme for GrootWarren {
     fn name(&self) -> &str {
         &self.name
@@ -80,17 +97,17 @@ impl Scheme for GrootWarren {
             return;
         }
         // The half-kick adds dt/2 F, so (2 lambda - 1) times it is the shift (lambda - 1/2) dt F.
-        let mut shift = sys.momenta().to_vec();
+        // Every pair evaluation may re-sort the particles, so the shift is kept by particle id.
+        let mut shift = by_id(sys);
         full_force(sys, 0.5 * dt, 0);
-        drift(sys, dt);
         let factor = 2.0 * self.lambda - 1.0;
-        for (s, p) in shift.iter_mut().zip(sys.momenta_mut()) {
-            *s = factor * (*p - *s);
-            *p += *s;
+        for (&id, p) in sys.ids().iter().zip(sys.momenta()) {
+            let s = &mut shift[id as usize];
+            *s = factor * (p - *s);
         }
+        drift(sys, dt);
+        add_by_id(sys, &shift, 1.0);
         full_force(sys, 0.5 * dt, 1);
-        for (s, p) in shift.iter().zip(sys.momenta_mut()) {
-            *p -= s;
-        }
+        add_by_id(sys, &shift, -1.0);
     }
 }

@@ -81,6 +81,7 @@ pub fn exponential_velocity(sys: &mut System, h: f64, stream: u8, noise: EtdNois
         ref mut p,
         ref inv_mass,
         ref kind,
+        ref id,
         ref params,
         body_force,
         seed,
@@ -112,7 +113,7 @@ pub fn exponential_velocity(sys: &mut System, h: f64, stream: u8, noise: EtdNois
         rate[i] += r;
         rate[j] += r;
         let random = if sigma > 0.0 {
-            let random = sigma * pair.wr * pair_normal(seed, step, stream, pair.i, pair.j);
+            let random = sigma * pair.wr * pair_normal(seed, step, stream, id[i], id[j]);
             let k = random * pair.e;
             kick[i] += k;
             kick[j] -= k;

@@ -73,6 +73,7 @@ fn sweep_with<const SHIFTED: bool, V: Virial>(
         ref mut p,
         ref inv_mass,
         ref kind,
+        ref id,
         ref params,
         seed,
         step,
@@ -92,7 +93,7 @@ fn sweep_with<const SHIFTED: bool, V: Virial>(
             pair,
             a: params.a(kind[i], kind[j]),
             r: if noisy {
-                pair_normal(seed, step, stream, pair.i, pair.j)
+                pair_normal(seed, step, stream, id[i], id[j])
             } else {
                 0.0
             },

@@ -41,13 +41,16 @@ impl Rdf {
     /// Add the pair distances of the current positions.
     pub fn record(&mut self, sys: &System) {
         let (q, bx, shear) = (sys.positions(), sys.boundary(), sys.shear());
-        self.grid.build(q, bx, self.r_max);
+        self.grid.bin(q, bx, self.r_max);
+        let pos = self.grid.gather(q);
         let scale = self.hist.len() as f64 / self.r_max;
         let hist = &mut self.hist;
         let last = hist.len() - 1;
-        self.grid.for_each_pair(bx, shear, self.r_max, |_, _, r2| {
-            hist[((r2.sqrt() * scale) as usize).min(last)] += 1;
-        });
+        self.grid
+            .for_each_pair(&pos, bx, shear, self.r_max, |_, _, d| {
+                let r2 = d.norm_squared();
+                hist[((r2.sqrt() * scale) as usize).min(last)] += 1;
+            });
         self.samples += 1;
     }
 

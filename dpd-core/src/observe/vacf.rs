@@ -36,14 +36,13 @@ impl Vacf {
         })
     }
 
-    /// Add the velocities of the current state as the next sample.
+    /// Add the velocities of the current state as the next sample, indexed by particle id
+    /// (the storage order changes at neighbour-list builds).
     pub fn record(&mut self, sys: &System) {
-        let v: Vec<Vec3> = sys
-            .momenta()
-            .iter()
-            .zip(sys.masses())
-            .map(|(p, m)| p / *m)
-            .collect();
+        let mut v = vec![Vec3::zeros(); sys.len()];
+        for ((&id, p), m) in sys.ids().iter().zip(sys.momenta()).zip(sys.masses()) {
+            v[id as usize] = p / *m;
+        }
         self.record_velocities(v);
     }
 
