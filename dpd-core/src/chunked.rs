@@ -1,52 +1,126 @@
-//! Order-preserving parallel flat map, used to build pair lists on all threads with the
-//! same result as one thread.
+//! Order-preserving parallel flat map into reusable parts, used to build pair lists on all
+//! threads with the same result as one thread.
 
 use rayon::prelude::*;
+use std::ops::Range;
 
 /// Below this many items the work is not split across threads.
 const PARALLEL_MIN_ITEMS: usize = 64;
 
+/// A sequence stored as consecutive parts, one per chunk of the work that produced it, so that
+/// threads fill their parts in place and nothing is copied to join them. The parts keep their
+/// allocations between fills.
+#[derive(Clone, Debug)]
+pub struct Parts<U> {
+    parts: Vec<Vec<U>>,
+    /// `starts[k]`: index of the first item of part `k` in the whole sequence; one more entry
+    /// holds the length.
+    starts: Vec<usize>,
+}
+
+impl<U> Default for Parts<U> {
+    fn default() -> Self {
+        Parts {
+            parts: Vec::new(),
+            starts: vec![0],
+        }
+    }
+}
+
+impl<U> Parts<U> {
+    /// Number of items.
+    pub fn len(&self) -> usize {
+        *self.starts.last().unwrap_or(&0)
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// All items in order.
+    pub fn iter(&self) -> impl DoubleEndedIterator<Item = &U> + '_ {
+        self.parts.iter().flatten()
+    }
+
+    /// Items `range` of the sequence, which must lie within one part (a range produced by one
+    /// work item always does).
+    #[inline]
+    pub fn slice(&self, range: Range<usize>) -> &[U] {
+        let k = self.starts.partition_point(|&s| s <= range.start) - 1;
+        let k = k.min(self.parts.len().saturating_sub(1));
+        let s = self.starts[k];
+        self.parts
+            .get(k)
+            .map_or(&[], |p| &p[range.start - s..range.end - s])
+    }
+}
+
+impl<U> Parts<U> {
+    /// Append one more part, filled by `f`.
+    pub(crate) fn append(&mut self, f: impl FnOnce(&mut Vec<U>)) {
+        let mut part = Vec::new();
+        f(&mut part);
+        let total = self.len() + part.len();
+        self.parts.push(part);
+        self.starts.push(total);
+    }
+}
+
 /// Apply `f` to every item, each appending its outputs to a buffer; refill `out` with all
-/// outputs in item order (reusing its allocation) and return the number each item produced.
-/// The result does not depend on the thread count: chunks are fixed by the item count alone
-/// and concatenated in order.
+/// outputs in item order and return the number each item produced. The result does not depend
+/// on the thread count: chunks are fixed by the item count alone and their parts are read in
+/// order.
 pub(crate) fn flat_map_ordered<T: Sync, U: Send>(
     items: &[T],
-    out: &mut Vec<U>,
+    out: &mut Parts<U>,
     f: impl Fn(&T, &mut Vec<U>) + Sync,
 ) -> Vec<u32> {
-    let run = |chunk: &[T], out: &mut Vec<U>| {
-        chunk
+    let chunk = if items.len() < PARALLEL_MIN_ITEMS || rayon::current_num_threads() == 1 {
+        items.len().max(1)
+    } else {
+        items.len().div_ceil(64).max(16)
+    };
+    let chunks = items.len().div_ceil(chunk);
+    out.parts.resize_with(chunks, Vec::new);
+    out.parts.truncate(chunks);
+    let run = |(chunk, part): (&[T], &mut Vec<U>)| {
+        part.clear();
+        let lens = chunk
             .iter()
             .map(|item| {
-                let before = out.len();
-                f(item, out);
-                (out.len() - before) as u32
+                let before = part.len();
+                f(item, part);
+                (part.len() - before) as u32
             })
-            .collect::<Vec<u32>>()
+            .collect::<Vec<u32>>();
+        // The first fill of a part grows it by doubling; give the excess back once.
+        let n = part.len();
+        if part.capacity() > n + n / 8 + 64 {
+            part.shrink_to(n + n / 16);
+        }
+        lens
     };
-    let expected = out.len();
-    out.clear();
-    if items.len() < PARALLEL_MIN_ITEMS || rayon::current_num_threads() == 1 {
-        return run(items, out);
+    let lens: Vec<Vec<u32>> = if chunks > 1 {
+        items
+            .par_chunks(chunk)
+            .zip(out.parts.par_iter_mut())
+            .map(run)
+            .collect()
+    } else {
+        items
+            .chunks(chunk)
+            .zip(out.parts.iter_mut())
+            .map(run)
+            .collect()
+    };
+    out.starts.clear();
+    out.starts.push(0);
+    let mut total = 0;
+    for part in &out.parts {
+        total += part.len();
+        out.starts.push(total);
     }
-    let chunk = items.len().div_ceil(64).max(16);
-    // Each chunk starts with room for its share of the previous total, plus a margin.
-    let room = expected / items.len().div_ceil(chunk) * 9 / 8;
-    let parts: Vec<(Vec<U>, Vec<u32>)> = items
-        .par_chunks(chunk)
-        .map(|c| {
-            let mut part = Vec::with_capacity(room);
-            let lens = run(c, &mut part);
-            (part, lens)
-        })
-        .collect();
-    let mut lens = Vec::with_capacity(items.len());
-    for (part, l) in parts {
-        out.extend(part);
-        lens.extend(l);
-    }
-    lens
+    lens.concat()
 }
 
 #[cfg(test)]
@@ -65,11 +139,26 @@ mod tests {
             .num_threads(3)
             .build()
             .unwrap();
-        let (mut out_a, mut out_b) = (Vec::new(), vec![7, 7]);
+        let (mut out_a, mut out_b) = (Parts::default(), Parts::default());
         let a = one.install(|| flat_map_ordered(&items, &mut out_a, f));
+        // A second fill reuses the parts.
+        three.install(|| flat_map_ordered(&items[..10], &mut out_b, f));
         let b = three.install(|| flat_map_ordered(&items, &mut out_b, f));
-        assert_eq!((a.clone(), out_a.clone()), (b, out_b));
+        assert_eq!(a, b);
+        let (all_a, all_b): (Vec<u32>, Vec<u32>) = (
+            out_a.iter().copied().collect(),
+            out_b.iter().copied().collect(),
+        );
+        assert_eq!(all_a, all_b);
         assert_eq!(a.len(), items.len());
         assert_eq!(a.iter().sum::<u32>() as usize, out_a.len());
+        // Every item's output is one slice.
+        let mut start = 0;
+        for (item, &n) in items.iter().zip(&a) {
+            let end = start + n as usize;
+            let want: Vec<u32> = (0..item % 7).map(|x| x * item).collect();
+            assert_eq!(out_b.slice(start..end), &want[..]);
+            start = end;
+        }
     }
 }

@@ -81,6 +81,6 @@ fn full_with<const SHIFTED: bool, V: Virial>(sys: &mut System, stream: u8) -> V 
             *full.get(i) += fe;
             *full.get(j) -= fe;
         }
-        V::of(pair, f - conservative)
+        V::of(pair, params.rc(), f - conservative)
     })
 }

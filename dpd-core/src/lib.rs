@@ -16,7 +16,7 @@
 
 pub mod boundary;
 pub mod checkpoint;
-mod chunked;
+pub mod chunked;
 pub mod error;
 pub mod flow;
 pub mod force;

@@ -45,7 +45,7 @@
 //! each particle of a pair, one for the slide between them).
 
 use crate::boundary::{LeesEdwards, PeriodicBox};
-use crate::chunked;
+use crate::chunked::{self, Parts};
 use crate::Vec3;
 use std::ops::Range;
 
@@ -305,7 +305,7 @@ impl CellGrid {
         bx: &PeriodicBox,
         shear: Option<&LeesEdwards>,
         cutoff: f64,
-        items: &mut Vec<T>,
+        items: &mut Parts<T>,
         emit: impl Fn(u32, u32, Vec3, &mut Vec<T>) + Sync,
     ) -> Runs {
         let found = chunked::flat_map_ordered(&self.sweep, items, |&c, out| {
@@ -330,18 +330,21 @@ impl CellGrid {
             groups.colours.push(groups.runs.len() as u32 - 1);
         }
         if let Some(le) = shear.filter(|le| le.offset() != 0.0) {
-            for c in 0..self.cells() {
-                if self.dims == [1, 1, 1] || self.coordinates(c).1 + 1 != self.dims[1] {
-                    continue;
+            let (base, runs) = (items.len(), &mut groups.runs);
+            items.append(|part| {
+                for c in 0..self.cells() {
+                    if self.dims == [1, 1, 1] || self.coordinates(c).1 + 1 != self.dims[1] {
+                        continue;
+                    }
+                    self.for_each_sliding_pair_of_cell(c, pos, bx, le, cutoff, |a, b, d| {
+                        emit(a, b, d, part)
+                    });
+                    let end = (base + part.len()) as u32;
+                    if end != *runs.last().unwrap_or(&0) {
+                        runs.push(end);
+                    }
                 }
-                self.for_each_sliding_pair_of_cell(c, pos, bx, le, cutoff, |a, b, d| {
-                    emit(a, b, d, items)
-                });
-                let end = items.len() as u32;
-                if end != *groups.runs.last().unwrap_or(&0) {
-                    groups.runs.push(end);
-                }
-            }
+            });
             groups.colours.push(groups.runs.len() as u32 - 1);
         }
         groups
@@ -434,7 +437,7 @@ pub struct VerletList {
     reference: Vec<Vec3>,
     /// The sliding boundary at the last build (its offset fixed the sweep order).
     shear: Option<LeesEdwards>,
-    candidates: Vec<(u32, u32)>,
+    candidates: Parts<(u32, u32)>,
     groups: Runs,
     grid: CellGrid,
     /// Whether a build matches the positions (with skin 0 cleared by
@@ -450,7 +453,7 @@ impl VerletList {
             skin,
             reference: Vec::new(),
             shear: None,
-            candidates: Vec::new(),
+            candidates: Parts::default(),
             groups: Runs::default(),
             grid: CellGrid::default(),
             built: false,
@@ -549,7 +552,7 @@ impl VerletList {
     }
 
     /// Candidate pairs within `r_c + skin` at the last build, in sweep order (none with skin 0).
-    pub fn candidates(&self) -> &[(u32, u32)] {
+    pub fn candidates(&self) -> &Parts<(u32, u32)> {
         &self.candidates
     }
 
@@ -606,7 +609,10 @@ mod tests {
                 let mut seen = std::collections::HashMap::new();
                 for k in g.colours[c]..g.colours[c + 1] {
                     let run = g.runs[k as usize]..g.runs[k as usize + 1];
-                    for &(i, j) in &list.candidates()[run.start as usize..run.end as usize] {
+                    for &(i, j) in list
+                        .candidates()
+                        .slice(run.start as usize..run.end as usize)
+                    {
                         for p in [i, j] {
                             assert_eq!(
                                 *seen.entry(p).or_insert(k),

@@ -2,7 +2,7 @@
 //! and the executor that visits them in the sweep order of [`crate::neighbour`].
 
 use crate::boundary::{LeesEdwards, PeriodicBox};
-use crate::chunked;
+use crate::chunked::{self, Parts};
 use crate::neighbour::{Runs, VerletList, COLOURS};
 use crate::params::Params;
 use crate::walls::FrozenWalls;
@@ -18,9 +18,7 @@ pub struct Pair {
     pub j: u32,
     /// Unit vector from j to i (minimum image).
     pub e: Vec3,
-    /// Distance `r_ij`.
-    pub r: f64,
-    /// `w = 1 - r / r_c`, the conservative-force weight.
+    /// `w = 1 - r_ij / r_c`, the conservative-force weight.
     pub w: f64,
     /// Random weight `w_R = w^(s/2)`; the dissipative weight is `w_R^2`.
     pub wr: f64,
@@ -32,6 +30,13 @@ pub struct Pair {
 }
 
 impl Pair {
+    /// Distance `r_ij = r_c (1 - w)` for cutoff `rc` (not stored: the pair loops stream the
+    /// table, and 8 bytes fewer per pair is 12 % less traffic).
+    #[inline(always)]
+    pub fn r(&self, rc: f64) -> f64 {
+        rc * (1.0 - self.w)
+    }
+
     /// The pair's relative velocity along `e`, `e . (v_i - v_j + (dvx, 0, 0))`, with the shift
     /// added only when `SHIFTED` (a compile-time switch, so that periodic sweeps do not pay).
     #[inline(always)]
@@ -51,26 +56,25 @@ const PARALLEL_MIN_PAIRS: usize = 8192;
 /// The interacting pairs in sweep order, grouped into cell runs and colours.
 #[derive(Clone, Debug, Default)]
 pub struct PairTable {
-    pairs: Vec<Pair>,
+    pairs: Parts<Pair>,
     groups: Runs,
 }
 
-impl std::ops::Deref for PairTable {
-    type Target = [Pair];
-    fn deref(&self) -> &[Pair] {
-        &self.pairs
+impl PairTable {
+    /// Number of pairs.
+    pub fn len(&self) -> usize {
+        self.pairs.len()
     }
-}
 
-impl<'a> IntoIterator for &'a PairTable {
-    type Item = &'a Pair;
-    type IntoIter = std::slice::Iter<'a, Pair>;
-    fn into_iter(self) -> Self::IntoIter {
+    pub fn is_empty(&self) -> bool {
+        self.pairs.is_empty()
+    }
+
+    /// The pairs in sweep order.
+    pub fn iter(&self) -> impl DoubleEndedIterator<Item = &Pair> + '_ {
         self.pairs.iter()
     }
-}
 
-impl PairTable {
     /// Refill with the pairs of `list` that interact at positions `q`, keeping its order: from
     /// the list's candidates, or with skin 0 straight from the scan of its grid (then `q` must
     /// be in the cell order of its last build, as a [`crate::System`] keeps it).
@@ -158,7 +162,6 @@ impl Fill<'_> {
                     i,
                     j,
                     e: d * (1.0 / r),
-                    r,
                     w,
                     wr: params.w_r(w),
                     dvx,
@@ -177,7 +180,7 @@ impl Fill<'_> {
         let runs: Vec<&[(u32, u32)]> = from
             .runs
             .windows(2)
-            .map(|run| &list.candidates()[run[0] as usize..run[1] as usize])
+            .map(|run| list.candidates().slice(run[0] as usize..run[1] as usize))
             .collect();
         let kept = chunked::flat_map_ordered(&runs, &mut table.pairs, |run, out| {
             for &(i, j) in *run {
@@ -218,7 +221,9 @@ impl PairTable {
         let g = &self.groups;
         let total = |items: &mut dyn Iterator<Item = T>| items.fold(T::default(), T::add);
         let run = |k: u32| -> T {
-            let pairs = &self.pairs[g.runs[k as usize] as usize..g.runs[k as usize + 1] as usize];
+            let pairs = self
+                .pairs
+                .slice(g.runs[k as usize] as usize..g.runs[k as usize + 1] as usize);
             match order {
                 SweepOrder::Forward => pairs.iter().fold(T::default(), |t, p| t.add(visit(p))),
                 SweepOrder::Reverse => pairs
@@ -257,21 +262,21 @@ impl PairTable {
 /// at no cost) or the pair virial tensor `r_ij f e_ij (x) e_ij = q_ij (x) (f e_ij)` of a force
 /// or impulse `f` along `e_ij`.
 pub(crate) trait Virial: Send + Default {
-    fn of(pair: &Pair, f: f64) -> Self;
+    fn of(pair: &Pair, rc: f64, f: f64) -> Self;
     fn add(self, other: Self) -> Self;
 }
 
 impl Virial for () {
     #[inline(always)]
-    fn of(_: &Pair, _: f64) {}
+    fn of(_: &Pair, _: f64, _: f64) {}
     #[inline(always)]
     fn add(self, _: ()) {}
 }
 
 impl Virial for Tensor {
     #[inline(always)]
-    fn of(pair: &Pair, f: f64) -> Self {
-        (pair.r * f) * pair.e * pair.e.transpose()
+    fn of(pair: &Pair, rc: f64, f: f64) -> Self {
+        (pair.r(rc) * f) * pair.e * pair.e.transpose()
     }
     #[inline(always)]
     fn add(self, other: Self) -> Self {

@@ -5,7 +5,7 @@ use crate::error::{finite_vectors, positive, ParamError};
 use crate::force;
 use crate::neighbour::VerletList;
 use crate::observe::ImpulseVirial;
-use crate::pairs::{Pair, PairTable};
+use crate::pairs::PairTable;
 use crate::params::Params;
 use crate::walls::{FrozenWalls, Walls};
 use crate::{Tensor, Vec3};
@@ -472,7 +472,7 @@ impl System {
 
     /// The interacting pairs at the current positions, in the sweep order documented in
     /// [`crate::neighbour`] (evaluated if needed).
-    pub fn pairs(&mut self) -> &[Pair] {
+    pub fn pairs(&mut self) -> &PairTable {
         self.ensure_pairs();
         &self.pairs
     }

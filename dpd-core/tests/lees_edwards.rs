@@ -225,6 +225,9 @@ fn recorded_impulses_are_the_applied_pair_forces() {
 fn state_dissipative_stress_xy(sys: &mut System) -> f64 {
     let gamma = sys.params().gamma();
     let volume = sys.boundary().volume();
+    let rc = sys.params().rc();
+    // Evaluate the pairs first: a list build re-sorts the particles.
+    sys.pairs();
     let v: Vec<_> = sys
         .momenta()
         .iter()
@@ -235,7 +238,7 @@ fn state_dissipative_stress_xy(sys: &mut System) -> f64 {
         .iter()
         .map(|pr| {
             let u = pr.e.dot(&(v[pr.i as usize] - v[pr.j as usize])) + pr.e.x * pr.dvx;
-            gamma * pr.wr * pr.wr * pr.r * pr.e.x * pr.e.y * u
+            gamma * pr.wr * pr.wr * pr.r(rc) * pr.e.x * pr.e.y * u
         })
         .sum::<f64>()
         / volume

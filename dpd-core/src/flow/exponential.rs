@@ -96,7 +96,7 @@ pub fn exponential_velocity(sys: &mut System, h: f64, stream: u8, noise: EtdNois
     let mut rate = vec![Vec3::zeros(); n];
     let mut kick = vec![Vec3::zeros(); n];
     let mut pair_forces = Vec::with_capacity(if recording { pairs.len() } else { 0 });
-    for pair in pairs {
+    for pair in pairs.iter() {
         let (i, j) = (pair.i as usize, pair.j as usize);
         let wd = pair.wr * pair.wr;
         let (vi, vj) = (p[i] * inv_mass[i], p[j] * inv_mass[j]);
@@ -191,7 +191,7 @@ fn pair_virial(
             let impulse = ((conservative + dissipative) * drift + random * spread
                 - Vec3::repeat(h * conservative))
             .component_mul(&pair.e);
-            (pair.r * pair.e) * impulse.transpose()
+            (pair.r(params.rc()) * pair.e) * impulse.transpose()
         })
         .sum()
 }

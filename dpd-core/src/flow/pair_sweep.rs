@@ -102,7 +102,11 @@ fn sweep_with<const SHIFTED: bool, V: Virial>(
         let dp = impulse * pair.e;
         *pi += dp;
         *pj -= dp;
-        V::of(pair, impulse - state.a * pair.w * conservative_h)
+        V::of(
+            pair,
+            params.rc(),
+            impulse - state.a * pair.w * conservative_h,
+        )
     })
 }
 

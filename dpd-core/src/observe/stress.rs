@@ -123,7 +123,7 @@ fn conservative_virial(sys: &mut System) -> Tensor {
                 let a = sys
                     .params
                     .a(sys.kind[pair.i as usize], sys.kind[pair.j as usize]);
-                (pair.r * a * pair.w) * pair.e * pair.e.transpose()
+                (pair.r(sys.params.rc()) * a * pair.w) * pair.e * pair.e.transpose()
             })
             .sum()
     })

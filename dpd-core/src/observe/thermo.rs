@@ -64,8 +64,9 @@ pub fn thermo(sys: &mut System) -> Thermo {
         for pair in pairs.iter() {
             let a = params.a(kind[pair.i as usize], kind[pair.j as usize]);
             u += 0.5 * a * rc * pair.w * pair.w;
-            lap += 2.0 * (a / rc - 2.0 * a * pair.w / pair.r);
-            virial += pair.r * a * pair.w;
+            let r = pair.r(rc);
+            lap += 2.0 * (a / rc - 2.0 * a * pair.w / r);
+            virial += r * a * pair.w;
         }
         let numerator: f64 = forces.iter().map(|f| f.norm_squared()).sum();
         (u, lap, virial, numerator)
