@@ -4,19 +4,20 @@ use crate::system::System;
 use crate::Tensor;
 use dpd_ir::SweepOrder;
 
-/// What a pair update sees: relative normal velocity `u = e . v_ij` (with the image velocity
-/// across a sliding boundary), inverse reduced mass `mu = 1/m_i + 1/m_j`, the pair, its
+/// What a pair update sees: inverse reduced mass `mu = 1/m_i + 1/m_j`, the pair, its
 /// repulsion `a_ij` and one standard normal `r`.
 struct PairState<'a> {
-    u: f64,
     mu: f64,
     pair: &'a Pair,
     a: f64,
     r: f64,
 }
 
-/// Visit the interacting pairs successively in `order`; `update` returns the change `du` of
-/// the pair's relative normal velocity, applied as `p_i += du/mu e`, `p_j -= du/mu e`.
+/// Visit the interacting pairs successively in `order`; `update` returns `(slope, offset)`
+/// with the change of the pair's relative normal velocity `u = e . v_ij` (with the image
+/// velocity across a sliding boundary) `du = slope u + offset`, applied as `p_i += du/mu e`,
+/// `p_j -= du/mu e`. Both come from the pair's geometry and noise alone, so that the chain
+/// from one update of a particle to the next (read `u`, write momenta) is a few multiply-adds.
 ///
 /// When the system records pair impulses for the stress, the dissipative and random part of
 /// each pair's impulse, `du/mu - a_ij w h_c` (`h_c`: the step over which the update also applies
@@ -28,7 +29,7 @@ fn sweep(
     stream: u8,
     order: SweepOrder,
     conservative_h: f64,
-    update: impl Fn(&PairState) -> f64 + Sync,
+    update: impl Fn(&PairState) -> (f64, f64) + Sync,
 ) {
     sys.ensure_pairs();
     let recorded = match (sys.shifted_pairs(), sys.impulses.is_some()) {
@@ -66,7 +67,7 @@ fn sweep_with<const SHIFTED: bool, V: Virial>(
     stream: u8,
     order: SweepOrder,
     conservative_h: f64,
-    update: impl Fn(&PairState) -> f64 + Sync,
+    update: impl Fn(&PairState) -> (f64, f64) + Sync,
 ) -> V {
     let System {
         ref pairs,
@@ -88,7 +89,6 @@ fn sweep_with<const SHIFTED: bool, V: Virial>(
         let (pi, pj) = unsafe { (p.get(i), p.get(j)) };
         let mu = inv_mass[i] + inv_mass[j];
         let state = PairState {
-            u: pair.normal_velocity::<SHIFTED>(*pi * inv_mass[i], *pj * inv_mass[j]),
             mu,
             pair,
             a: params.a(kind[i], kind[j]),
@@ -98,7 +98,11 @@ fn sweep_with<const SHIFTED: bool, V: Virial>(
                 0.0
             },
         };
-        let impulse = update(&state) / mu;
+        let (slope, offset) = update(&state);
+        let reduced = 1.0 / mu;
+        let (slope, offset) = (slope * reduced, offset * reduced);
+        let u = pair.normal_velocity::<SHIFTED>(*pi * inv_mass[i], *pj * inv_mass[j]);
+        let impulse = slope * u + offset;
         let dp = impulse * pair.e;
         *pi += dp;
         *pj -= dp;
@@ -130,13 +134,13 @@ pub fn ou(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
     }
     sweep(sys, stream, order, 0.0, |s| {
         let em1 = (-gamma * s.pair.wr * s.pair.wr * s.mu * h).exp_m1();
-        s.u * em1 + ou_std(kbt, s.mu, em1) * s.r
+        (em1, ou_std(kbt, s.mu, em1) * s.r)
     });
 }
 
 /// O with BBK (Shardlow's update), using the same normal `R` twice:
 /// `u_half = u - (tau h/2) u + (s_n sqrt(h)/2) R`, `u_new = (u_half + (s_n sqrt(h)/2) R) / (1 + tau h/2)`,
-/// `s_n = sigma w_R mu`.
+/// `s_n = sigma w_R mu`; that is `u_new - u = (-tau h u + s_n sqrt(h) R) / (1 + tau h/2)`.
 #[inline]
 pub fn bbk(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
     let (gamma, sigma) = (sys.params.gamma(), sys.params.sigma());
@@ -147,8 +151,8 @@ pub fn bbk(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
     sweep(sys, stream, order, 0.0, |s| {
         let half_tau_h = 0.5 * gamma * s.pair.wr * s.pair.wr * s.mu * h;
         let kick = 0.5 * sigma * s.pair.wr * s.mu * root_h * s.r;
-        let u_half = s.u - half_tau_h * s.u + kick;
-        (u_half + kick) / (1.0 + half_tau_h) - s.u
+        let scale = 1.0 / (1.0 + half_tau_h);
+        (-2.0 * half_tau_h * scale, 2.0 * kick * scale)
     });
 }
 
@@ -163,7 +167,8 @@ pub fn trotter(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
         let x = gamma * s.pair.wr * s.pair.wr * s.mu * h;
         let em1 = (-x).exp_m1();
         let phi1 = if x == 0.0 { 1.0 } else { -em1 / x };
-        s.u * em1 + s.a * s.pair.w * s.mu * h * phi1 + ou_std(kbt, s.mu, em1) * s.r
+        let offset = s.a * s.pair.w * s.mu * h * phi1 + ou_std(kbt, s.mu, em1) * s.r;
+        (em1, offset)
     });
     sys.apply_body_force(h);
 }
