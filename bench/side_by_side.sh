@@ -25,7 +25,7 @@ export LD_LIBRARY_PATH="$venv/lib:${LD_LIBRARY_PATH:-}"
 cargo build --release --quiet --example step_timing
 out=$(mktemp)
 for threads in 1 "$all"; do
-  target/release/examples/step_timing "$n" "$steps" "$threads" 0.0 | tee -a "$out"
+  "${CARGO_TARGET_DIR:-target}/release/examples/step_timing" "$n" "$steps" "$threads" 0.0 | tee -a "$out"
   OMP_NUM_THREADS=$threads "$venv/bin/python" bench/peers/lammps_dpd.py "$n" "$steps" "$threads" | tee -a "$out"
   "$venv/bin/python" bench/peers/openmm_dpd.py "$n" "$(( steps / 5 > 0 ? steps / 5 : 1 ))" "$threads" | tee -a "$out"
 done

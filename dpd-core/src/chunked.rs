@@ -84,7 +84,10 @@ pub(crate) fn flat_map_ordered<T: Sync, U: Send>(
     out.parts.resize_with(chunks, Vec::new);
     out.parts.truncate(chunks);
     let run = |(chunk, part): (&[T], &mut Vec<U>)| {
+        // Room for the previous fill and 3 % more, so that a part seldom grows.
+        let previous = part.len();
         part.clear();
+        part.reserve(previous + previous / 32);
         let lens = chunk
             .iter()
             .map(|item| {
@@ -93,10 +96,10 @@ pub(crate) fn flat_map_ordered<T: Sync, U: Send>(
                 (part.len() - before) as u32
             })
             .collect::<Vec<u32>>();
-        // The first fill of a part grows it by doubling; give the excess back once.
+        // A part that grew by doubling gives the excess back.
         let n = part.len();
-        if part.capacity() > n + n / 8 + 64 {
-            part.shrink_to(n + n / 16);
+        if part.capacity() > n + n / 16 + 64 {
+            part.shrink_to(n + n / 32);
         }
         lens
     };

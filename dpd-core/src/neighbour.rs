@@ -56,8 +56,6 @@ pub struct CellGrid {
     coloured: bool,
     /// `cell_start[c]..cell_start[c + 1]`: cell-order indices of the particles of cell `c`.
     cell_start: Vec<u32>,
-    /// Scratch of [`CellGrid::bin`]: the cell of each particle, in input order.
-    cell_of: Vec<u32>,
     /// `order[k]`: input index of the k-th particle in cell order.
     order: Vec<u32>,
     /// Cells in sweep order (colour-major) and the number of cells of each colour; they depend
@@ -103,20 +101,20 @@ impl CellGrid {
             self.plan_sweep();
         }
         let ncell = self.cells();
-        self.cell_of.clear();
-        self.cell_of.extend(q.iter().map(|x| {
+        // Computed twice rather than stored: 4 bytes per particle less.
+        let cell_of = |x: &Vec3| {
             let mut c = 0usize;
             for k in 0..3 {
                 // `as usize` saturates (NaN -> 0); the clamp keeps rounding at L in range.
                 let ck = ((x[k] / l[k]) * dims[k] as f64) as usize;
                 c = c * dims[k] + ck.min(dims[k] - 1);
             }
-            c as u32
-        }));
+            c
+        };
         self.cell_start.clear();
         self.cell_start.resize(ncell + 1, 0);
-        for &c in &self.cell_of {
-            self.cell_start[c as usize + 1] += 1;
+        for x in q {
+            self.cell_start[cell_of(x) + 1] += 1;
         }
         for c in 0..ncell {
             self.cell_start[c + 1] += self.cell_start[c];
@@ -124,8 +122,8 @@ impl CellGrid {
         self.order.clear();
         self.order.resize(q.len(), 0);
         // Fill each cell from its start; `cell_start[c]` is advanced and then restored.
-        for (i, &c) in self.cell_of.iter().enumerate() {
-            let slot = &mut self.cell_start[c as usize];
+        for (i, x) in q.iter().enumerate() {
+            let slot = &mut self.cell_start[cell_of(x)];
             self.order[*slot as usize] = i as u32;
             *slot += 1;
         }
