@@ -28,6 +28,7 @@
 //! for the hand-written schemes of `dpd-schemes`.
 
 mod drift;
+mod expm1;
 mod exponential;
 mod kick;
 mod pair_sweep;

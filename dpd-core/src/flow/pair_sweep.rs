@@ -1,3 +1,4 @@
+use super::expm1::expm1;
 use crate::pairs::{Disjoint, Pair, Virial};
 use crate::rng::pair_normal;
 use crate::system::System;
@@ -133,7 +134,7 @@ pub fn ou(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
         return;
     }
     sweep(sys, stream, order, 0.0, |s| {
-        let em1 = (-gamma * s.pair.wr * s.pair.wr * s.mu * h).exp_m1();
+        let em1 = expm1(-gamma * s.pair.wr * s.pair.wr * s.mu * h);
         (em1, ou_std(kbt, s.mu, em1) * s.r)
     });
 }
@@ -165,7 +166,7 @@ pub fn trotter(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
     sys.counters.force_evaluations += 1;
     sweep(sys, stream, order, h, |s| {
         let x = gamma * s.pair.wr * s.pair.wr * s.mu * h;
-        let em1 = (-x).exp_m1();
+        let em1 = expm1(-x);
         let phi1 = if x == 0.0 { 1.0 } else { -em1 / x };
         let offset = s.a * s.pair.w * s.mu * h * phi1 + ou_std(kbt, s.mu, em1) * s.r;
         (em1, offset)
