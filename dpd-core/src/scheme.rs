@@ -5,9 +5,10 @@ use crate::boundary::LeesEdwards;
 use crate::error::BlowUp;
 use crate::flow::{bbk, drift, full_force, kick, ou, trotter};
 use crate::observe::ImpulseVirial;
-use crate::system::System;
+use crate::system::{System, PARALLEL_MIN_PARTICLES};
 use crate::{Tensor, Vec3};
 use dpd_ir::{Diagnostic, Flow, Options, Program, Stage};
+use rayon::prelude::*;
 
 /// An integrator: one step of length `sys.dt()`.
 ///
@@ -148,25 +149,19 @@ impl System {
         scheme: &S,
         backup: &mut Backup,
     ) -> Result<(), BlowUp> {
-        backup.q.clone_from(&self.q);
-        backup.p.clone_from(&self.p);
-        backup.id.clone_from(&self.id);
+        copy(&mut backup.q, &self.q);
+        copy(&mut backup.p, &self.p);
+        copy(&mut backup.id, &self.id);
         backup.full_valid = self.full_valid;
         if self.full_valid {
-            backup.full.clone_from(&self.full);
+            copy(&mut backup.full, &self.full);
         }
         backup.full_virial = self.full_virial;
         backup.shear = self.shear;
         backup.impulses = self.impulses;
         self.drift_bound = 0.0;
         scheme.step(self);
-        let reason = if !self.drift_bound.is_finite()
-            || !self
-                .q
-                .iter()
-                .chain(&self.p)
-                .all(|v| v.iter().all(|x| x.is_finite()))
-        {
+        let reason = if !self.drift_bound.is_finite() || !finite(&self.q) || !finite(&self.p) {
             Some("a position or momentum became non-finite".to_string())
         } else if self.drift_bound > 0.5 * self.bx.min_length() {
             Some(format!(
@@ -201,5 +196,28 @@ impl System {
                 })
             }
         }
+    }
+}
+
+/// `to <- from`, on all threads for large systems.
+fn copy<T: Copy + Send + Sync>(to: &mut Vec<T>, from: &[T]) {
+    if from.len() >= PARALLEL_MIN_PARTICLES && rayon::current_num_threads() > 1 {
+        to.resize(from.len(), from[0]);
+        to.par_chunks_mut(4096)
+            .zip(from.par_chunks(4096))
+            .for_each(|(t, f)| t.copy_from_slice(f));
+    } else {
+        to.clear();
+        to.extend_from_slice(from);
+    }
+}
+
+/// Whether every component of every vector is finite.
+fn finite(v: &[Vec3]) -> bool {
+    let ok = |v: &Vec3| v.iter().all(|x| x.is_finite());
+    if v.len() >= PARALLEL_MIN_PARTICLES && rayon::current_num_threads() > 1 {
+        v.par_iter().with_min_len(4096).all(ok)
+    } else {
+        v.iter().all(ok)
     }
 }

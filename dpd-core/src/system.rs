@@ -599,8 +599,9 @@ impl System {
     }
 }
 
-/// Below this many particles a permutation is not split across threads.
-const PARALLEL_MIN_PARTICLES: usize = 16_384;
+/// Below this many particles the per-particle loops (permutations, binning, drifts, kicks, the
+/// blow-up guard) run on one thread: splitting them costs more than it saves.
+pub(crate) const PARALLEL_MIN_PARTICLES: usize = 16_384;
 
 /// `v[k] <- v[order[k]]`.
 fn permute<T: Copy + Send + Sync>(v: &mut Vec<T>, order: &[u32]) {

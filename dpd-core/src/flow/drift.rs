@@ -1,5 +1,6 @@
-use crate::system::System;
+use crate::system::{System, PARALLEL_MIN_PARTICLES};
 use crate::Vec3;
+use rayon::prelude::*;
 
 /// A: `q_i += h p_i / m_i`, positions wrapped into the box. Exact for any `h`.
 ///
@@ -39,28 +40,46 @@ pub fn drift(sys: &mut System, h: f64) {
 
 /// `q_i += h p_i / m_i`, then `wrap(q_i, p_i, m_i)` for each mobile particle (frozen ones,
 /// with inverse mass 0, stay where they are); returns the largest squared displacement (NaN
-/// if any is NaN).
+/// if any is NaN). Large systems move on all threads: each particle on its own, and the
+/// largest displacement does not depend on the order.
 #[inline(always)]
-fn move_particles(sys: &mut System, h: f64, wrap: impl Fn(&mut Vec3, &mut Vec3, f64)) -> f64 {
-    let mut max2: f64 = 0.0;
-    for (((q, p), &im), &m) in sys
-        .q
-        .iter_mut()
-        .zip(&mut sys.p)
-        .zip(&sys.inv_mass)
-        .zip(&sys.mass)
-    {
+fn move_particles(
+    sys: &mut System,
+    h: f64,
+    wrap: impl Fn(&mut Vec3, &mut Vec3, f64) + Sync,
+) -> f64 {
+    let one = |(((q, p), &im), &m): (((&mut Vec3, &mut Vec3), &f64), &f64)| -> f64 {
         if im == 0.0 {
-            continue;
+            return 0.0;
         }
         let d = (h * im) * *p;
-        let d2 = d.norm_squared();
-        // NaN is kept too, so that it poisons the bound.
-        if d2 > max2 || d2.is_nan() {
-            max2 = d2;
-        }
         *q += d;
         wrap(q, p, m);
+        d.norm_squared()
+    };
+    // NaN is kept, so that it poisons the bound.
+    let larger = |a: f64, b: f64| {
+        if a.is_nan() || b.is_nan() {
+            f64::NAN
+        } else {
+            a.max(b)
+        }
+    };
+    let (q, p, inv_mass, mass) = (&mut sys.q, &mut sys.p, &sys.inv_mass, &sys.mass);
+    if q.len() >= PARALLEL_MIN_PARTICLES && rayon::current_num_threads() > 1 {
+        q.par_iter_mut()
+            .zip(p)
+            .zip(inv_mass)
+            .zip(mass)
+            .with_min_len(4096)
+            .map(one)
+            .reduce(|| 0.0, larger)
+    } else {
+        q.iter_mut()
+            .zip(p)
+            .zip(inv_mass)
+            .zip(mass)
+            .map(one)
+            .fold(0.0, larger)
     }
-    max2
 }

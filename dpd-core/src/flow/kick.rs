@@ -1,13 +1,29 @@
-use crate::system::System;
+use crate::system::{System, PARALLEL_MIN_PARTICLES};
+use crate::Vec3;
+use rayon::prelude::*;
+
+/// `p_i += h f_i` for every particle, on all threads for large systems (each element on its
+/// own, so the result does not depend on the thread count).
+#[inline(always)]
+fn add_scaled(p: &mut [Vec3], h: f64, f: &[Vec3]) {
+    if p.len() >= PARALLEL_MIN_PARTICLES && rayon::current_num_threads() > 1 {
+        p.par_iter_mut()
+            .zip(f)
+            .with_min_len(4096)
+            .for_each(|(p, f)| *p += h * f);
+    } else {
+        for (p, f) in p.iter_mut().zip(f) {
+            *p += h * f;
+        }
+    }
+}
 
 /// B: `p_i += h F^C_i(q)` (plus `h g` with a body force `g`). Exact for any `h`; reuses the conservative forces while positions
 /// are unchanged.
 #[inline]
 pub fn kick(sys: &mut System, h: f64) {
     sys.ensure_conservative();
-    for (p, f) in sys.p.iter_mut().zip(&sys.conservative) {
-        *p += h * f;
-    }
+    add_scaled(&mut sys.p, h, &sys.conservative);
     sys.apply_body_force(h);
 }
 
@@ -23,9 +39,7 @@ pub fn kick(sys: &mut System, h: f64) {
 #[inline]
 pub fn full_force(sys: &mut System, h: f64, stream: u8) {
     sys.ensure_full(stream);
-    for (p, f) in sys.p.iter_mut().zip(&sys.full) {
-        *p += h * f;
-    }
+    add_scaled(&mut sys.p, h, &sys.full);
     sys.apply_body_force(h);
     if let Some(impulses) = &mut sys.impulses {
         impulses.add_kick(h, sys.full_virial.as_ref());
