@@ -13,16 +13,18 @@
 //! The Verlet list fixes the order in which every pairwise sub-flow visits the pairs. Cells of
 //! edge at least `r_c + skin` own the pairs between themselves and 13 of their neighbours (a
 //! half stencil spanning offsets `[0, 1] x [-1, 1] x [-1, 1]`). Cells are coloured by
-//! `(cx mod 2, cy mod 3, cz mod 3)`: two cells of one colour are at least two cells apart
-//! along x or three along y or z, so the pairs they own share no particle and can be processed
-//! concurrently. The order is: colours 0..18, within a colour cells by ascending index, within
-//! a cell the pairs in scan order: own pairs `(a, b)` with `a < b` in cell order, the cell
-//! above along z, then the rows `(dx, dy) = (0, 1), (1, -1), (1, 0), (1, 1)`, each row its
-//! cells `dz = -1, 0, 1` in storage order (one contiguous range unless the row wraps along z).
+//! `(cx mod m_x, cy mod m_y, cz mod m_z)`, with `m_x >= 2` and `m_y, m_z >= 3` dividing the cell
+//! counts (the smallest such up to 5; a count is rounded down by at most two cells to have
+//! one): two cells of one colour are at least two cells apart along x or three along y or z,
+//! so the pairs they own share no particle and can be processed concurrently. The order is:
+//! colours in order (`((cx mod m_x) m_y + cy mod m_y) m_z + cz mod m_z`), within a colour cells
+//! by ascending index, within a cell the pairs in scan order: own pairs `(a, b)` with `a < b`
+//! in cell order, the cell above along z, then the rows `(dx, dy) = (0, 1), (1, -1), (1, 0),
+//! (1, 1)`, each row its cells `dz = -1, 0, 1` in storage order (one contiguous range unless
+//! the row wraps along z).
 //! Within a colour, cells commute, so this order gives the same result on any number of
-//! threads. Where the box is too small for the colouring (fewer than 4 cells along x or 3
-//! along y or z, or counts that are not multiples of 2 and 3 after rounding down) there is one
-//! colour and processing is sequential.
+//! threads. Where the box is too small for the grid (fewer than 3 cells along some axis)
+//! there is one cell and one colour, and processing is sequential.
 //!
 //! The order is a function of the positions at the last build; a checkpoint stores those
 //! positions so that a restarted run rebuilds the same list. The list is rebuilt when a particle
@@ -36,8 +38,8 @@
 //! pairs with the images of the bottom row: for each `dz` the four image cells that overlap the
 //! x-range `[cx - 1, cx + 2)` cell widths, scanned in order of increasing x. The bottom row
 //! drops its stencil rows that cross downwards. Two top-row cells of one colour may
-//! reach the same bottom cell, so these crossing runs form an extra colour after the 18, visited
-//! sequentially (`Runs::colours` then has 19 groups). Everything else keeps the periodic order;
+//! reach the same bottom cell, so these crossing runs form an extra colour after the others,
+//! visited sequentially (`Runs::colours` then has one more group than the grid has colours). Everything else keeps the periodic order;
 //! with offset 0 (in particular shear rate 0) the list is exactly the periodic one. Positions
 //! that crossed the y boundary since the build carry the offset of their crossing, so the
 //! rebuild test allows for the distance `travel` the images slid since the build: it rebuilds
@@ -56,6 +58,8 @@ use std::ops::Range;
 #[derive(Clone, Debug, Default)]
 pub struct CellGrid {
     dims: [usize; 3],
+    /// Colour moduli along each axis (see [`colourable`]); all 1 when not coloured.
+    moduli: [usize; 3],
     coloured: bool,
     /// `cell_start[c]..cell_start[c + 1]`: cell-order indices of the particles of cell `c`.
     cell_start: Vec<u32>,
@@ -64,22 +68,32 @@ pub struct CellGrid {
     /// Cells in sweep order (colour-major) and the number of cells of each colour; they depend
     /// on `dims` only and are kept between builds.
     sweep: Vec<u32>,
-    colour_cells: [usize; COLOURS],
+    colour_cells: Vec<usize>,
 }
 
 /// Chunks of particles counted and placed together by [`CellGrid::bin`].
 const BIN_CHUNKS: usize = 8;
 
-/// Colours of the cell colouring, `2 * 3 * 3`.
-pub const COLOURS: usize = 18;
+/// Cells along one axis of `n` that fit, and the colour modulus `m` for them: the largest count
+/// in `n - 2 ..= n` (at least 3) with a divisor `m` in `low ..= 5`, `m` the smallest such; else
+/// `n` with its smallest divisor from `low` on. Cells `k m` apart along the axis (cyclically)
+/// are then at least `m` cells apart: for `low = 2` (x, where the half stencil spans two cells)
+/// and `low = 3` (y and z, three cells) their stencils do not overlap along that axis.
+fn colourable(n: usize, low: usize) -> (usize, usize) {
+    for count in (n.saturating_sub(2).max(3)..=n).rev() {
+        if let Some(m) = (low..=5).find(|&m| count.is_multiple_of(m)) {
+            return (count, m);
+        }
+    }
+    (n, (low..=n).find(|&m| n.is_multiple_of(m)).unwrap_or(n))
+}
 
 impl CellGrid {
     /// Bin `q` into cells of edge >= `min_cell` and return the cell order: `order[k]` is the
     /// index in `q` of the k-th particle in cell order (cells by index, within a cell by index
-    /// in `q`). Cell counts are rounded down to multiples of (2, 3, 3) where that keeps at least
-    /// (4, 3, 3) cells, which makes the grid colourable. With fewer than 3 cells along some axis
-    /// the grid degenerates to one cell (all pairs are then searched: O(N^2), only for boxes
-    /// smaller than three cutoffs).
+    /// in `q`). Cell counts are rounded down by at most two to counts the colouring divides
+    /// ([`colourable`]). With fewer than 3 cells along some axis the grid degenerates to one
+    /// cell (all pairs are then searched: O(N^2), only for boxes smaller than three cutoffs).
     ///
     /// The scans below read positions in this order: pass `q` permuted by `order` (as a
     /// [`crate::System`] stores them after a build) or [`CellGrid::gather`]ed.
@@ -94,15 +108,18 @@ impl CellGrid {
             }
         };
         let mut dims = [fit(0), fit(1), fit(2)];
-        if dims.contains(&1) {
+        let mut moduli = [1; 3];
+        let coloured = !dims.contains(&1);
+        if coloured {
+            for (k, low) in [2, 3, 3].into_iter().enumerate() {
+                (dims[k], moduli[k]) = colourable(dims[k], low);
+            }
+        } else {
             dims = [1, 1, 1];
         }
-        let coloured = dims[0] >= 4 && dims[1] >= 3 && dims[2] >= 3;
-        if coloured {
-            dims = [dims[0] / 2 * 2, dims[1] / 3 * 3, dims[2] / 3 * 3];
-        }
-        if dims != self.dims || coloured != self.coloured || self.sweep.is_empty() {
+        if dims != self.dims || moduli != self.moduli || self.sweep.is_empty() {
             self.dims = dims;
+            self.moduli = moduli;
             self.coloured = coloured;
             self.plan_sweep();
         }
@@ -172,9 +189,10 @@ impl CellGrid {
     fn plan_sweep(&mut self) {
         let mut cells: Vec<u32> = (0..self.cells() as u32).collect();
         cells.sort_by_key(|&c| self.colour(c as usize));
-        self.colour_cells = [0; COLOURS];
+        self.colour_cells = vec![0; self.colours()];
         for &c in &cells {
-            self.colour_cells[self.colour(c as usize)] += 1;
+            let colour = self.colour(c as usize);
+            self.colour_cells[colour] += 1;
         }
         self.sweep = cells;
     }
@@ -194,13 +212,16 @@ impl CellGrid {
         self.coloured
     }
 
-    /// Colour of cell `c`, in `0..COLOURS` (always 0 when the grid is not coloured).
+    /// Number of colours: the product of the moduli (1 when the grid is not coloured).
+    pub fn colours(&self) -> usize {
+        self.moduli.iter().product()
+    }
+
+    /// Colour of cell `c`, in `0..colours()`: `(cx mod m_x, cy mod m_y, cz mod m_z)`.
     pub fn colour(&self, c: usize) -> usize {
-        if !self.coloured {
-            return 0;
-        }
+        let [mx, my, mz] = self.moduli;
         let (cx, cy, cz) = self.coordinates(c);
-        (cx % 2) * 9 + (cy % 3) * 3 + cz % 3
+        ((cx % mx) * my + cy % my) * mz + cz % mz
     }
 
     /// Call `f(a, b, d)` for every pair owned by cell `c` whose minimum-image separation
@@ -348,11 +369,11 @@ impl CellGrid {
         let mut groups = Runs {
             runs: vec![0],
             colours: vec![0],
-            independent: self.coloured,
+            independent: if self.coloured { self.colours() } else { 0 },
         };
         let mut found = found.into_iter();
         let mut end = 0;
-        for count in self.colour_cells {
+        for &count in &self.colour_cells {
             for n in found.by_ref().take(count) {
                 end += n;
                 if n > 0 {
@@ -447,14 +468,14 @@ fn wrap_cell(c: usize, d: isize, n: usize, length: f64) -> (usize, f64) {
 }
 
 /// Pairs grouped for the sweep order: `runs[k]..runs[k + 1]` is the k-th cell's run of
-/// pairs, `colours[c]..colours[c + 1]` the runs of colour `c`. When `independent` is true the
-/// runs of each of the first [`COLOURS`] colours touch disjoint particles; runs of a further
-/// colour (the pairs across a sliding Lees-Edwards boundary) never count as independent.
+/// pairs, `colours[c]..colours[c + 1]` the runs of colour `c`. The runs of each of the first
+/// `independent` colours touch disjoint particles (0: none do); runs of a further colour (the
+/// pairs across a sliding Lees-Edwards boundary) never count as independent.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Runs {
     pub runs: Vec<u32>,
     pub colours: Vec<u32>,
-    pub independent: bool,
+    pub independent: usize,
 }
 
 /// Verlet list with a skin, in sweep order, rebuilt on displacement.
@@ -624,8 +645,8 @@ mod tests {
         pos
     }
 
-    /// The list holds exactly the brute-force pairs, and runs of one of the first `COLOURS`
-    /// colours share no particle.
+    /// The list holds exactly the brute-force pairs, and runs of one of the independent colours
+    /// share no particle.
     fn check_list(list: &VerletList, expected: Vec<(u32, u32)>, coloured: bool, what: &str) {
         let mut got: Vec<(u32, u32)> = list
             .candidates()
@@ -635,9 +656,9 @@ mod tests {
         got.sort_unstable();
         assert_eq!(got, expected, "{what}");
         let g = list.groups();
-        assert_eq!(g.independent, coloured, "{what}");
-        if g.independent {
-            for c in 0..COLOURS {
+        assert_eq!(g.independent > 0, coloured, "{what}");
+        {
+            for c in 0..g.independent {
                 let mut seen = std::collections::HashMap::new();
                 for k in g.colours[c]..g.colours[c + 1] {
                     let run = g.runs[k as usize]..g.runs[k as usize + 1];
@@ -654,6 +675,23 @@ mod tests {
                         }
                     }
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn colourable_counts_lose_at_most_two_cells() {
+        assert_eq!(colourable(3, 2), (3, 3));
+        assert_eq!(colourable(5, 2), (5, 5));
+        assert_eq!(colourable(5, 3), (5, 5));
+        assert_eq!(colourable(7, 2), (6, 2));
+        assert_eq!(colourable(7, 3), (6, 3));
+        assert_eq!(colourable(20, 3), (20, 4));
+        assert_eq!(colourable(13, 3), (12, 3));
+        for n in 3..200 {
+            for low in [2, 3] {
+                let (count, m) = colourable(n, low);
+                assert!(count + 2 >= n && count <= n && count.is_multiple_of(m) && m >= low);
             }
         }
     }
@@ -697,14 +735,23 @@ mod tests {
 
     #[test]
     fn verlet_list_matches_brute_force_and_colours_are_disjoint() {
-        for (l, coloured) in [(2.5, false), (4.2, false), (7.0, true), (9.5, true)] {
+        // Box 5.3: 4 x 5 x 3 cells (moduli 2, 5, 3); 6.0: 4 x 6 x 4 (2, 3, 4).
+        let boxes = [
+            (2.5, false),
+            (4.2, false),
+            (5.3, true),
+            (6.0, true),
+            (7.0, true),
+            (9.5, true),
+        ];
+        for (l, coloured) in boxes {
             let bx = PeriodicBox::new([l, l * 1.3, l * 0.9]).unwrap();
             let q = uniform_positions(&bx, 400, 1);
             let mut list = VerletList::new(0.3);
             let pos = build(&mut list, &q, &bx, None);
             let expected = brute(&pos, 1.3, |d| bx.min_image(d));
             check_list(&list, expected, coloured, &format!("box {l}"));
-            assert_eq!(list.groups().colours.len(), COLOURS + 1);
+            assert_eq!(list.groups().colours.len(), list.grid().colours() + 1);
         }
     }
 
@@ -714,7 +761,7 @@ mod tests {
         // more cells along x (3 and 4 are where the four image cells wrap around).
         let boxes = [
             ([2.5, 3.25, 2.25], false),
-            ([4.2, 4.5, 4.5], false),
+            ([4.2, 4.5, 4.5], true),
             ([5.3, 6.9, 4.8], true),
             ([7.0, 9.1, 6.3], true),
             ([9.5, 12.35, 8.55], true),
@@ -735,7 +782,7 @@ mod tests {
                     &format!("box {l}, offset {offset}"),
                 );
                 let colours = list.groups().colours.len() - 1;
-                assert_eq!(colours, COLOURS + usize::from(offset != 0.0));
+                assert_eq!(colours, list.grid().colours() + usize::from(offset != 0.0));
             }
         }
     }

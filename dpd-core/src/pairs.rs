@@ -3,7 +3,7 @@
 
 use crate::boundary::{LeesEdwards, PeriodicBox};
 use crate::chunked::{self, Parts};
-use crate::neighbour::{Runs, VerletList, COLOURS};
+use crate::neighbour::{Runs, VerletList};
 use crate::params::Params;
 use crate::walls::FrozenWalls;
 use crate::{Tensor, Vec3};
@@ -232,13 +232,13 @@ impl PairTable {
                     .fold(T::default(), |t, p| t.add(visit(p))),
             }
         };
-        let parallel = g.independent
+        let parallel = g.independent > 0
             && self.pairs.len() >= PARALLEL_MIN_PAIRS
             && rayon::current_num_threads() > 1;
         let colours = g.colours.len().saturating_sub(1);
         let colour = |c: usize| -> T {
             let runs = g.colours[c]..g.colours[c + 1];
-            if parallel && c < COLOURS {
+            if parallel && c < g.independent {
                 let sums: Vec<T> = runs.into_par_iter().map(run).collect();
                 match order {
                     SweepOrder::Forward => total(&mut sums.into_iter()),
