@@ -284,7 +284,7 @@ fn sheared_restart_is_bitwise_identical() {
 
 #[test]
 fn sheared_trajectory_is_identical_for_any_thread_count() {
-    // ~20 000 pairs: the sweeps run in parallel over the 18 colours, and sequentially over the
+    // ~20 000 pairs: the sweeps run in parallel within each colour, and sequentially over the
     // extra colour of pairs across the sliding boundary.
     let runs: Vec<System> = [1, 2]
         .iter()
