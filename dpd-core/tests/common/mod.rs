@@ -22,7 +22,7 @@ pub fn standard_box(gamma: f64, dt: f64, seed: u64) -> System {
     system(500, 3.0, Params::builder().gamma(gamma), dt, seed)
 }
 
-/// Bitwise equality of two systems' positions and momenta.
+/// Bitwise equality of two systems' positions and momenta, particle order included.
 pub fn same_bits(a: &System, b: &System) -> bool {
     let bits = |s: &System| -> Vec<u64> {
         s.positions()
@@ -31,7 +31,7 @@ pub fn same_bits(a: &System, b: &System) -> bool {
             .flat_map(|v| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>())
             .collect()
     };
-    bits(a) == bits(b)
+    a.ids() == b.ids() && bits(a) == bits(b)
 }
 
 /// A step made of plain sub-flow calls, named for messages.
