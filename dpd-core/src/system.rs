@@ -471,7 +471,9 @@ impl System {
     }
 
     /// The interacting pairs at the current positions, in the sweep order documented in
-    /// [`crate::neighbour`] (evaluated if needed).
+    /// [`crate::neighbour`] (evaluated if needed). Evaluating them may rebuild the neighbour
+    /// list, which re-sorts the particles: read positions and momenta after this call, and
+    /// the pair indices `i`, `j` are storage indices (see [`System::ids`]).
     pub fn pairs(&mut self) -> &PairTable {
         self.ensure_pairs();
         &self.pairs
