@@ -385,10 +385,8 @@ impl CellGrid {
         if let Some(le) = shear.filter(|le| le.offset() != 0.0) {
             let (base, runs) = (items.len(), &mut groups.runs);
             items.append(|part| {
+                // Only top-row cells own such pairs; the others find none.
                 for c in 0..self.cells() {
-                    if self.dims == [1, 1, 1] || self.coordinates(c).1 + 1 != self.dims[1] {
-                        continue;
-                    }
                     self.for_each_sliding_pair_of_cell(c, pos, bx, le, cutoff, |a, b, d| {
                         emit(a, b, d, part)
                     });

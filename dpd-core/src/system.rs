@@ -519,12 +519,16 @@ impl System {
             self.ensure_conservative();
             return f(self, &self.pairs, &self.conservative);
         }
-        // A copy, sorted and listed on its own (without skin, nothing but the pairs).
+        // A copy, sorted and listed on its own (without skin, nothing but the pairs). What the
+        // copy would only overwrite (list, pairs, stale conservative forces, the undo copy) is
+        // set aside rather than cloned.
+        let list = std::mem::replace(&mut self.list, VerletList::new(0.0));
+        let pairs = std::mem::take(&mut self.pairs);
+        let conservative = std::mem::take(&mut self.conservative);
         let backup = std::mem::take(&mut self.backup);
         let mut scratch = self.clone();
-        self.backup = backup;
-        scratch.list = VerletList::new(0.0);
-        scratch.pairs_valid = false;
+        (self.list, self.pairs, self.conservative, self.backup) =
+            (list, pairs, conservative, backup);
         scratch.ensure_conservative();
         f(&scratch, &scratch.pairs, &scratch.conservative)
     }
@@ -542,9 +546,9 @@ impl System {
             permute(&mut w.frozen, order);
             permute(&mut w.velocity_x, order);
         }
-        if self.conservative_valid {
-            permute(&mut self.conservative, order);
-        }
+        // Positions changed or the list was never built: the conservative forces are stale;
+        // full forces can be valid (restored from a checkpoint) and move with their particles.
+        debug_assert!(!self.conservative_valid);
         if self.full_valid {
             permute(&mut self.full, order);
         }
