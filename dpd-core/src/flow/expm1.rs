@@ -39,10 +39,11 @@ fn small(r: f64) -> f64 {
     let r2 = r * r;
     let r4 = r2 * r2;
     let r8 = r4 * r4;
-    let a = [0, 2, 4, 6, 8, 10].map(|k| c[k] + c[k + 1] * r);
-    let b0 = a[0] + a[1] * r2;
-    let b1 = a[2] + a[3] * r2;
-    let b2 = a[4] + a[5] * r2;
+    // Written out: `[T; N]::map` is not always inlined (it was a call in the ABOBA profile).
+    let pair = |k: usize| c[k] + c[k + 1] * r;
+    let b0 = pair(0) + pair(2) * r2;
+    let b1 = pair(4) + pair(6) * r2;
+    let b2 = pair(8) + pair(10) * r2;
     r + r2 * ((b0 + b1 * r4) + b2 * r8)
 }
 
