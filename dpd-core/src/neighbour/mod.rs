@@ -19,9 +19,10 @@
 //! so the pairs they own share no particle and can be processed concurrently. The order is:
 //! colours in order (`((cx mod m_x) m_y + cy mod m_y) m_z + cz mod m_z`), within a colour cells
 //! by ascending index, within a cell the pairs in scan order: own pairs `(a, b)` with `a < b`
-//! in cell order, the cell above along z, then the rows `(dx, dy) = (0, 1), (1, -1), (1, 0),
-//! (1, 1)`, each row its cells `dz = -1, 0, 1` in storage order (one contiguous range unless
-//! the row wraps along z).
+//! in cell order; then, particle by particle of the cell in cell order, its pairs with the
+//! stencil: the cell above along z, then the rows `(dx, dy) = (0, 1), (1, -1), (1, 0),
+//! (1, 1)`, each row its cells `dz = -1, 0, 1` in storage order. (The stencil's particles are
+//! gathered once per cell and tested in vectorised blocks, see `stencil.rs`.)
 //! Within a colour, cells commute, so this order gives the same result on any number of
 //! threads. Where the box is too small for the grid (fewer than 3 cells along some axis)
 //! there is one cell and one colour, and processing is sequential.
@@ -46,6 +47,8 @@
 //! when a particle moved more than `(skin - 3 travel) / 2` (one travel for the displacement of
 //! each particle of a pair, one for the slide between them).
 
+mod stencil;
+
 use crate::boundary::{LeesEdwards, PeriodicBox};
 use crate::chunked::{self, Parts};
 use crate::pairs::Disjoint;
@@ -53,6 +56,7 @@ use crate::system::PARALLEL_MIN_PARTICLES;
 use crate::Vec3;
 use rayon::prelude::*;
 use std::ops::Range;
+use stencil::with_stencil;
 
 /// Particles binned into cells of edge at least `min_cell`, and the sweep over their pairs.
 #[derive(Clone, Debug, Default)]
@@ -269,28 +273,30 @@ impl CellGrid {
         let [nx, ny, nz] = self.dims;
         let (cx, cy, cz) = self.coordinates(c);
         let l = bx.lengths();
-        let (z, sz) = wrap_cell(cz, 1, nz, l.z);
-        let above = self.range((cx * ny + cy) * nz + z);
-        scan(pos, &own, above, Vec3::new(0.0, 0.0, sz), cut2, &mut f);
-        for [dx, dy] in ROWS {
-            let (y, sy) = wrap_cell(cy, dy, ny, l.y);
-            if sliding && sy != 0.0 {
-                continue;
-            }
-            let (x, sx) = wrap_cell(cx, dx, nx, l.x);
-            let row = (x * ny + y) * nz;
-            if cz >= 1 && cz + 1 < nz {
-                let cells =
-                    self.cell_start[row + cz - 1] as usize..self.cell_start[row + cz + 2] as usize;
-                scan(pos, &own, cells, Vec3::new(sx, sy, 0.0), cut2, &mut f);
-            } else {
-                for dz in [-1, 0, 1] {
-                    let (z, sz) = wrap_cell(cz, dz, nz, l.z);
-                    let cell = self.range(row + z);
-                    scan(pos, &own, cell, Vec3::new(sx, sy, sz), cut2, &mut f);
+        with_stencil(|stencil| {
+            let (z, sz) = wrap_cell(cz, 1, nz, l.z);
+            let above = self.range((cx * ny + cy) * nz + z);
+            stencil.push(pos, above, Vec3::new(0.0, 0.0, sz));
+            for [dx, dy] in ROWS {
+                let (y, sy) = wrap_cell(cy, dy, ny, l.y);
+                if sliding && sy != 0.0 {
+                    continue;
+                }
+                let (x, sx) = wrap_cell(cx, dx, nx, l.x);
+                let row = (x * ny + y) * nz;
+                if cz >= 1 && cz + 1 < nz {
+                    let cells = self.cell_start[row + cz - 1] as usize
+                        ..self.cell_start[row + cz + 2] as usize;
+                    stencil.push(pos, cells, Vec3::new(sx, sy, 0.0));
+                } else {
+                    for dz in [-1, 0, 1] {
+                        let (z, sz) = wrap_cell(cz, dz, nz, l.z);
+                        stencil.push(pos, self.range(row + z), Vec3::new(sx, sy, sz));
+                    }
                 }
             }
-        }
+            stencil.pairs(pos, own, cut2, &mut f);
+        });
     }
 
     /// Call `f(a, b, d)` for the pairs that cell `c` owns across a sliding Lees-Edwards
