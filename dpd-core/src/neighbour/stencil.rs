@@ -19,8 +19,10 @@ const BLOCK: usize = 64;
 
 /// Candidates of one cell's stencil: position minus the periodic shift of its cell (so that
 /// `q_a - candidate` is the separation from particle `a` of the cell), and cell-order index.
+/// The first `len` entries of the arrays are in use; the arrays only grow.
 #[derive(Default)]
 pub(super) struct Stencil {
+    len: usize,
     x: Vec<f64>,
     y: Vec<f64>,
     z: Vec<f64>,
@@ -36,10 +38,7 @@ thread_local! {
 pub(super) fn with_stencil<R>(body: impl FnOnce(&mut Stencil) -> R) -> R {
     SCRATCH.with(|s| {
         let mut s = s.borrow_mut();
-        s.x.clear();
-        s.y.clear();
-        s.z.clear();
-        s.index.clear();
+        s.len = 0;
         body(&mut s)
     })
 }
@@ -49,11 +48,23 @@ impl Stencil {
     /// `shift` to its positions to sit next to them.
     #[inline(always)]
     pub(super) fn push(&mut self, pos: &[Vec3], range: Range<usize>, shift: Vec3) {
-        let q = &pos[range.clone()];
-        self.x.extend(q.iter().map(|q| q.x - shift.x));
-        self.y.extend(q.iter().map(|q| q.y - shift.y));
-        self.z.extend(q.iter().map(|q| q.z - shift.z));
-        self.index.extend(range.map(|b| b as u32));
+        let (start, end) = (self.len, self.len + range.len());
+        if self.index.len() < end {
+            let grown = end.next_power_of_two().max(256);
+            self.x.resize(grown, 0.0);
+            self.y.resize(grown, 0.0);
+            self.z.resize(grown, 0.0);
+            self.index.resize(grown, 0);
+        }
+        let slots = self.x[start..end]
+            .iter_mut()
+            .zip(&mut self.y[start..end])
+            .zip(&mut self.z[start..end])
+            .zip(&mut self.index[start..end]);
+        for ((((x, y), z), index), (b, q)) in slots.zip(range.clone().zip(&pos[range])) {
+            (*x, *y, *z, *index) = (q.x - shift.x, q.y - shift.y, q.z - shift.z, b as u32);
+        }
+        self.len = end;
     }
 
     /// Call `f(a, b, d)` for every particle `a` of `own` (in order) and every candidate `b`
@@ -98,7 +109,9 @@ impl Stencil {
         cut2: f64,
         f: &mut impl FnMut(u32, u32, Vec3),
     ) {
-        let m = self.index.len();
+        let m = self.len;
+        // Written before they are read, block by block.
+        let (mut inside, mut hits) = ([false; BLOCK], [0u8; BLOCK]);
         for a in own {
             let qa = pos[a];
             let mut start = 0;
@@ -109,13 +122,11 @@ impl Stencil {
                     &self.y[start..end],
                     &self.z[start..end],
                 );
-                let mut inside = [false; BLOCK];
                 for (((inside, &x), &y), &z) in inside.iter_mut().zip(x).zip(y).zip(z) {
                     let (dx, dy, dz) = (qa.x - x, qa.y - y, qa.z - z);
                     *inside = dx * dx + dy * dy + dz * dz < cut2;
                 }
                 // Every slot is written, the count advances only on a hit: no branch.
-                let mut hits = [0u8; BLOCK];
                 let mut n = 0;
                 for (k, &inside) in inside[..end - start].iter().enumerate() {
                     // n <= k < BLOCK, so the mask changes nothing; it spares a bounds check.
