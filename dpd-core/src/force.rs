@@ -1,8 +1,7 @@
 //! Per-particle forces summed over the interacting pairs in sweep order.
 
-use crate::pairs::{Disjoint, PairTable, Virial};
+use crate::pairs::{Disjoint, Noise, PairTable, Virial};
 use crate::params::Params;
-use crate::rng::pair_normal;
 use crate::system::System;
 use crate::{Tensor, Vec3};
 use dpd_ir::SweepOrder;
@@ -49,7 +48,7 @@ pub(crate) fn full(sys: &mut System, stream: u8) {
 #[inline(always)]
 fn full_with<const SHIFTED: bool, V: Virial>(sys: &mut System, stream: u8) -> V {
     let System {
-        ref pairs,
+        ref mut pairs,
         ref p,
         ref inv_mass,
         ref kind,
@@ -67,13 +66,19 @@ fn full_with<const SHIFTED: bool, V: Virial>(sys: &mut System, stream: u8) -> V 
     let full = Disjoint::new(full);
     let gamma = params.gamma();
     let noise = params.sigma() / dt.sqrt();
-    pairs.visit_sum(SweepOrder::Forward, |pair| {
+    let normals = (noise > 0.0).then_some(Noise {
+        seed,
+        step,
+        stream,
+        id,
+    });
+    pairs.visit_sum_noisy(SweepOrder::Forward, normals, |pair, z| {
         let (i, j) = (pair.i as usize, pair.j as usize);
         let u = pair.normal_velocity::<SHIFTED>(p[i] * inv_mass[i], p[j] * inv_mass[j]);
         let conservative = params.a(kind[i], kind[j]) * pair.w;
         let mut f = conservative - gamma * pair.wr * pair.wr * u;
         if noise > 0.0 {
-            f += noise * pair.wr * pair_normal(seed, step, stream, id[i], id[j]);
+            f += noise * pair.wr * z;
         }
         let fe = f * pair.e;
         // SAFETY: `visit` never hands two pairs sharing a particle to different threads.

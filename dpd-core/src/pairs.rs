@@ -5,11 +5,13 @@ use crate::boundary::{LeesEdwards, PeriodicBox};
 use crate::chunked::{self, Parts};
 use crate::neighbour::{Runs, VerletList};
 use crate::params::Params;
+use crate::rng::pair_normals;
 use crate::walls::FrozenWalls;
 use crate::{Tensor, Vec3};
 use dpd_ir::SweepOrder;
 use rayon::prelude::*;
 use std::marker::PhantomData;
+use std::ops::Range;
 
 /// One interacting pair with `r_ij < r_c`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -58,6 +60,8 @@ const PARALLEL_MIN_PAIRS: usize = 8192;
 pub struct PairTable {
     pairs: Parts<Pair>,
     groups: Runs,
+    /// The pairs' standard normals of the last noisy visit, in table order (scratch).
+    normals: Vec<f64>,
 }
 
 impl PairTable {
@@ -218,19 +222,86 @@ impl PairTable {
         order: SweepOrder,
         visit: impl Fn(&Pair) -> T + Sync,
     ) -> T {
+        self.visit_runs(order, |_, pairs| match order {
+            SweepOrder::Forward => pairs.iter().fold(T::default(), |t, p| t.add(visit(p))),
+            SweepOrder::Reverse => pairs
+                .iter()
+                .rev()
+                .fold(T::default(), |t, p| t.add(visit(p))),
+        })
+    }
+
+    /// [`PairTable::visit_sum`] handing each pair its standard normal of `noise` (0 with
+    /// `None`). The normals are drawn first, for the whole table at once
+    /// ([`crate::rng::pair_normals`]); they are the numbers [`crate::rng::pair_normal`] gives.
+    pub(crate) fn visit_sum_noisy<T: Virial>(
+        &mut self,
+        order: SweepOrder,
+        noise: Option<Noise>,
+        visit: impl Fn(&Pair, f64) -> T + Sync,
+    ) -> T {
+        let Some(noise) = noise else {
+            return self.visit_sum(order, |p| visit(p, 0.0));
+        };
+        self.draw_normals(noise);
+        let normals = &self.normals;
+        self.visit_runs(order, |range, pairs| {
+            let z = &normals[range];
+            match order {
+                SweepOrder::Forward => pairs
+                    .iter()
+                    .zip(z)
+                    .fold(T::default(), |t, (p, &z)| t.add(visit(p, z))),
+                SweepOrder::Reverse => pairs
+                    .iter()
+                    .zip(z)
+                    .rev()
+                    .fold(T::default(), |t, (p, &z)| t.add(visit(p, z))),
+            }
+        })
+    }
+
+    /// The standard normal of every pair under `noise` into `self.normals`, part by part of
+    /// the table (on all threads when it is large).
+    fn draw_normals(&mut self, noise: Noise) {
+        self.normals.resize(self.pairs.len(), 0.0);
+        let mut rest = &mut self.normals[..];
+        let mut jobs = Vec::with_capacity(self.pairs.parts().len());
+        for part in self.pairs.parts() {
+            let (out, tail) = rest.split_at_mut(part.len());
+            jobs.push((&part[..], out));
+            rest = tail;
+        }
+        let Noise {
+            seed,
+            step,
+            stream,
+            id,
+        } = noise;
+        let draw = |(part, out): (&[Pair], &mut [f64])| {
+            let key = |k: usize| (id[part[k].i as usize], id[part[k].j as usize]);
+            pair_normals(seed, step, stream, key, out)
+        };
+        if self.pairs.len() >= PARALLEL_MIN_PAIRS && rayon::current_num_threads() > 1 {
+            jobs.into_par_iter().for_each(draw);
+        } else {
+            jobs.into_iter().for_each(draw);
+        }
+    }
+
+    /// Fold every run of the table with `run(range, pairs)` (`pairs` the run's pairs, items
+    /// `range` of the table; `run` visits them in `order`) and sum the results run by run,
+    /// then colour by colour, in `order`.
+    fn visit_runs<T: Virial>(
+        &self,
+        order: SweepOrder,
+        run: impl Fn(Range<usize>, &[Pair]) -> T + Sync,
+    ) -> T {
         let g = &self.groups;
         let total = |items: &mut dyn Iterator<Item = T>| items.fold(T::default(), T::add);
         let run = |k: u32| -> T {
-            let pairs = self
-                .pairs
-                .slice(g.runs[k as usize] as usize..g.runs[k as usize + 1] as usize);
-            match order {
-                SweepOrder::Forward => pairs.iter().fold(T::default(), |t, p| t.add(visit(p))),
-                SweepOrder::Reverse => pairs
-                    .iter()
-                    .rev()
-                    .fold(T::default(), |t, p| t.add(visit(p))),
-            }
+            let range = g.runs[k as usize] as usize..g.runs[k as usize + 1] as usize;
+            run(range.clone(), self.pairs.slice(range))
         };
         let parallel = g.independent > 0
             && self.pairs.len() >= PARALLEL_MIN_PAIRS
@@ -256,6 +327,16 @@ impl PairTable {
             SweepOrder::Reverse => total(&mut (0..colours).rev().map(colour)),
         }
     }
+}
+
+/// The noise of one pairwise sweep: pair `(i, j)` gets the standard normal
+/// `pair_normal(seed, step, stream, id[i], id[j])` ([`crate::rng`]).
+#[derive(Clone, Copy)]
+pub(crate) struct Noise<'a> {
+    pub seed: u64,
+    pub step: u64,
+    pub stream: u8,
+    pub id: &'a [u32],
 }
 
 /// What a pairwise update records per pair and [`PairTable::visit_sum`] adds up: `()` (nothing,

@@ -1,6 +1,5 @@
 use super::expm1::expm1;
-use crate::pairs::{Disjoint, Pair, Virial};
-use crate::rng::pair_normal;
+use crate::pairs::{Disjoint, Noise, Pair, Virial};
 use crate::system::System;
 use crate::Tensor;
 use dpd_ir::SweepOrder;
@@ -71,7 +70,7 @@ fn sweep_with<const SHIFTED: bool, V: Virial>(
     update: impl Fn(&PairState) -> (f64, f64) + Sync,
 ) -> V {
     let System {
-        ref pairs,
+        ref mut pairs,
         ref mut p,
         ref inv_mass,
         ref kind,
@@ -81,9 +80,14 @@ fn sweep_with<const SHIFTED: bool, V: Virial>(
         step,
         ..
     } = *sys;
-    let noisy = params.sigma() > 0.0;
+    let noise = (params.sigma() > 0.0).then_some(Noise {
+        seed,
+        step,
+        stream,
+        id,
+    });
     let p = Disjoint::new(p);
-    pairs.visit_sum(order, |pair| {
+    pairs.visit_sum_noisy(order, noise, |pair, r| {
         let (i, j) = (pair.i as usize, pair.j as usize);
         // SAFETY: `visit` never hands two pairs sharing a particle to different threads, and
         // the two references below are to distinct particles (i != j).
@@ -93,11 +97,7 @@ fn sweep_with<const SHIFTED: bool, V: Virial>(
             mu,
             pair,
             a: params.a(kind[i], kind[j]),
-            r: if noisy {
-                pair_normal(seed, step, stream, id[i], id[j])
-            } else {
-                0.0
-            },
+            r,
         };
         let (slope, offset) = update(&state);
         let reduced = 1.0 / mu;
