@@ -264,7 +264,12 @@ impl PairTable {
     /// The standard normal of every pair under `noise` into `self.normals`, part by part of
     /// the table (on all threads when it is large).
     fn draw_normals(&mut self, noise: Noise) {
-        self.normals.resize(self.pairs.len(), 0.0);
+        // Room for 3 % more pairs than now, as the table's parts keep; an excess is given back.
+        let n = self.pairs.len();
+        if self.normals.capacity() < n || self.normals.capacity() > n + n / 16 + 64 {
+            self.normals = Vec::with_capacity(n + n / 32);
+        }
+        self.normals.resize(n, 0.0);
         let mut rest = &mut self.normals[..];
         let mut jobs = Vec::with_capacity(self.pairs.parts().len());
         for part in self.pairs.parts() {
