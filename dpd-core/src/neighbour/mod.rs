@@ -22,7 +22,9 @@
 //! in cell order; then, particle by particle of the cell in cell order, its pairs with the
 //! stencil: the cell above along z, then the rows `(dx, dy) = (0, 1), (1, -1), (1, 0),
 //! (1, 1)`, each row its cells `dz = -1, 0, 1` in storage order. (The stencil's particles are
-//! gathered once per cell and tested in vectorised blocks, see `stencil.rs`.)
+//! gathered once per cell and tested in vectorised blocks, see `stencil.rs`. Pairs that share
+//! a particle are in the same relative order as when the stencil is scanned range by range for
+//! all particles of the cell, so the two orders give the same results.)
 //! Within a colour, cells commute, so this order gives the same result on any number of
 //! threads. Where the box is too small for the grid (fewer than 3 cells along some axis)
 //! there is one cell and one colour, and processing is sequential.
