@@ -8,7 +8,9 @@
 //! SC 2011), written here by hand because no maintained crate of the rand family provides a
 //! keyed counter-based generator; its output is checked against the published known-answer
 //! vectors of Random123. Standard normals come from `rand_distr::StandardNormal` (ziggurat)
-//! drawing on the Philox blocks of the key.
+//! drawing on the Philox blocks of the key. The pair passes draw the normals of a whole pair
+//! table at once with [`pair_normals`], which computes the first blocks of several pairs in
+//! vector registers and gives the same numbers as [`pair_normal`].
 //!
 //! Counter layout (128 bits): `[i, j, step low 32 bits, step bits 32..47 << 16 | stream << 8 |
 //! block]`, key = seed. Steps up to 2^48, 256 streams per step, 256 blocks of 128 bits per pair.
