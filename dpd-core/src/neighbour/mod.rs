@@ -98,8 +98,9 @@ impl CellGrid {
     /// Bin `q` into cells of edge >= `min_cell` and return the cell order: `order[k]` is the
     /// index in `q` of the k-th particle in cell order (cells by index, within a cell by index
     /// in `q`). Cell counts are rounded down by at most two to counts the colouring divides
-    /// ([`colourable`]). With fewer than 3 cells along some axis the grid degenerates to one
-    /// cell (all pairs are then searched: O(N^2), only for boxes smaller than three cutoffs).
+    /// (the private `colourable`). With fewer than 3 cells along some axis the grid degenerates
+    /// to one cell (all pairs are then searched: O(N^2), only for boxes smaller than three
+    /// cutoffs).
     ///
     /// The scans below read positions in this order: pass `q` permuted by `order` (as a
     /// [`crate::System`] stores them after a build) or [`CellGrid::gather`]ed.
