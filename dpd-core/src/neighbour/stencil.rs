@@ -68,7 +68,7 @@ impl Stencil {
     }
 
     /// Call `f(a, b, d)` for every particle `a` of `own` (in order) and every candidate `b`
-    /// (in the order pushed) with `|d|^2 < cut2`, `d = q_a + shift_b - q_b`.
+    /// (in the order pushed) with `|d|^2 < cut2`, `d = q_a - (q_b - shift_b)`.
     #[inline(always)]
     pub(super) fn pairs(
         &self,
