@@ -55,6 +55,11 @@ impl Pair {
 /// Below this many pairs a sweep is not worth splitting across threads.
 const PARALLEL_MIN_PAIRS: usize = 8192;
 
+/// Whether a pass over `n` pairs runs on all threads.
+fn on_all_threads(n: usize) -> bool {
+    n >= PARALLEL_MIN_PAIRS && rayon::current_num_threads() > 1
+}
+
 /// The interacting pairs in sweep order, grouped into cell runs and colours.
 #[derive(Clone, Debug, Default)]
 pub struct PairTable {
@@ -287,7 +292,7 @@ impl PairTable {
             let key = |k: usize| (id[part[k].i as usize], id[part[k].j as usize]);
             pair_normals(seed, step, stream, key, out)
         };
-        if self.pairs.len() >= PARALLEL_MIN_PAIRS && rayon::current_num_threads() > 1 {
+        if on_all_threads(self.pairs.len()) {
             jobs.into_par_iter().for_each(draw);
         } else {
             jobs.into_iter().for_each(draw);
@@ -308,9 +313,7 @@ impl PairTable {
             let range = g.runs[k as usize] as usize..g.runs[k as usize + 1] as usize;
             run(range.clone(), self.pairs.slice(range))
         };
-        let parallel = g.independent > 0
-            && self.pairs.len() >= PARALLEL_MIN_PAIRS
-            && rayon::current_num_threads() > 1;
+        let parallel = g.independent > 0 && on_all_threads(self.pairs.len());
         let colours = g.colours.len().saturating_sub(1);
         let colour = |c: usize| -> T {
             let runs = g.colours[c]..g.colours[c + 1];

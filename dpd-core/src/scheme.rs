@@ -5,7 +5,7 @@ use crate::boundary::LeesEdwards;
 use crate::error::BlowUp;
 use crate::flow::{bbk, drift, full_force, kick, ou, trotter};
 use crate::observe::ImpulseVirial;
-use crate::system::{System, PARALLEL_MIN_PARTICLES};
+use crate::system::{on_all_threads, System};
 use crate::{Tensor, Vec3};
 use dpd_ir::{Diagnostic, Flow, Options, Program, Stage};
 use rayon::prelude::*;
@@ -201,7 +201,7 @@ impl System {
 
 /// `to <- from`, on all threads for large systems.
 fn copy<T: Copy + Send + Sync>(to: &mut Vec<T>, from: &[T]) {
-    if from.len() >= PARALLEL_MIN_PARTICLES && rayon::current_num_threads() > 1 {
+    if on_all_threads(from.len()) {
         to.resize(from.len(), from[0]);
         to.par_chunks_mut(4096)
             .zip(from.par_chunks(4096))
@@ -215,7 +215,7 @@ fn copy<T: Copy + Send + Sync>(to: &mut Vec<T>, from: &[T]) {
 /// Whether every component of every vector is finite.
 fn finite(v: &[Vec3]) -> bool {
     let ok = |v: &Vec3| v.iter().all(|x| x.is_finite());
-    if v.len() >= PARALLEL_MIN_PARTICLES && rayon::current_num_threads() > 1 {
+    if on_all_threads(v.len()) {
         v.par_iter().with_min_len(4096).all(ok)
     } else {
         v.iter().all(ok)

@@ -607,11 +607,17 @@ impl System {
 
 /// Below this many particles the per-particle loops (permutations, binning, drifts, kicks, the
 /// blow-up guard) run on one thread: splitting them costs more than it saves.
-pub(crate) const PARALLEL_MIN_PARTICLES: usize = 16_384;
+const PARALLEL_MIN_PARTICLES: usize = 16_384;
+
+/// Whether a per-particle loop over `n` particles runs on all threads: only for large systems,
+/// and only when the pool has more than one.
+pub(crate) fn on_all_threads(n: usize) -> bool {
+    n >= PARALLEL_MIN_PARTICLES && rayon::current_num_threads() > 1
+}
 
 /// `v[k] <- v[order[k]]`.
 fn permute<T: Copy + Send + Sync>(v: &mut Vec<T>, order: &[u32]) {
-    let sorted: Vec<T> = if v.len() >= PARALLEL_MIN_PARTICLES {
+    let sorted: Vec<T> = if on_all_threads(v.len()) {
         order.par_iter().map(|&i| v[i as usize]).collect()
     } else {
         order.iter().map(|&i| v[i as usize]).collect()

@@ -1,4 +1,4 @@
-use crate::system::{System, PARALLEL_MIN_PARTICLES};
+use crate::system::{on_all_threads, System};
 use crate::Vec3;
 use rayon::prelude::*;
 
@@ -66,7 +66,7 @@ fn move_particles(
         }
     };
     let (q, p, inv_mass, mass) = (&mut sys.q, &mut sys.p, &sys.inv_mass, &sys.mass);
-    if q.len() >= PARALLEL_MIN_PARTICLES && rayon::current_num_threads() > 1 {
+    if on_all_threads(q.len()) {
         q.par_iter_mut()
             .zip(p)
             .zip(inv_mass)

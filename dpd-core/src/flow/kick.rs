@@ -1,4 +1,4 @@
-use crate::system::{System, PARALLEL_MIN_PARTICLES};
+use crate::system::{on_all_threads, System};
 use crate::Vec3;
 use rayon::prelude::*;
 
@@ -6,7 +6,7 @@ use rayon::prelude::*;
 /// own, so the result does not depend on the thread count).
 #[inline(always)]
 fn add_scaled(p: &mut [Vec3], h: f64, f: &[Vec3]) {
-    if p.len() >= PARALLEL_MIN_PARTICLES && rayon::current_num_threads() > 1 {
+    if on_all_threads(p.len()) {
         p.par_iter_mut()
             .zip(f)
             .with_min_len(4096)

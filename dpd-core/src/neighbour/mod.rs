@@ -54,7 +54,7 @@ mod stencil;
 use crate::boundary::{LeesEdwards, PeriodicBox};
 use crate::chunked::{self, Parts};
 use crate::pairs::Disjoint;
-use crate::system::PARALLEL_MIN_PARTICLES;
+use crate::system::on_all_threads;
 use crate::Vec3;
 use rayon::prelude::*;
 use std::ops::Range;
@@ -144,7 +144,7 @@ impl CellGrid {
         // A stable counting sort in chunks of particles: each chunk counts its cells, the
         // counts give every (cell, chunk) its slots in order, and the chunks fill their slots
         // on all threads; the order is that of the serial sort.
-        let parallel = q.len() >= PARALLEL_MIN_PARTICLES && rayon::current_num_threads() > 1;
+        let parallel = on_all_threads(q.len());
         let chunk = q
             .len()
             .div_ceil(if parallel { BIN_CHUNKS } else { 1 })
