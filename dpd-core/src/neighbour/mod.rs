@@ -18,13 +18,14 @@
 //! one): two cells of one colour are at least two cells apart along x or three along y or z,
 //! so the pairs they own share no particle and can be processed concurrently. The order is:
 //! colours in order (`((cx mod m_x) m_y + cy mod m_y) m_z + cz mod m_z`), within a colour cells
-//! by ascending index, within a cell the pairs in scan order: own pairs `(a, b)` with `a < b`
-//! in cell order; then, particle by particle of the cell in cell order, its pairs with the
+//! by ascending index, within a cell the pairs in scan order: particle by particle `a` of the
+//! cell in cell order, its pairs with the later particles `b > a` of the cell, then with the
 //! stencil: the cell above along z, then the rows `(dx, dy) = (0, 1), (1, -1), (1, 0),
-//! (1, 1)`, each row its cells `dz = -1, 0, 1` in storage order. (The stencil's particles are
-//! gathered once per cell and tested in vectorised blocks, see `stencil.rs`. Pairs that share
-//! a particle are in the same relative order as when the stencil is scanned range by range for
-//! all particles of the cell, so the two orders give the same results.)
+//! (1, 1)`, each row its cells `dz = -1, 0, 1` in storage order. (The cell and its stencil are
+//! copied once per cell and tested in vectorised blocks, see `stencil.rs`. Pairs that share a
+//! particle are in the same relative order as when all pairs within the cell come first and
+//! the stencil is then scanned range by range for all particles of the cell, so these orders
+//! give the same results.)
 //! Within a colour, cells commute, so this order gives the same result on any number of
 //! threads. Where the box is too small for the grid (fewer than 3 cells along some axis)
 //! there is one cell and one colour, and processing is sequential.
@@ -58,7 +59,7 @@ use crate::system::on_all_threads;
 use crate::Vec3;
 use rayon::prelude::*;
 use std::ops::Range;
-use stencil::with_stencil;
+use stencil::{with_stencil, Columns};
 
 /// Particles binned into cells of edge at least `min_cell`, and the sweep over their pairs.
 #[derive(Clone, Debug, Default)]
@@ -234,13 +235,16 @@ impl CellGrid {
     /// Call `f(a, b, d)` for every pair owned by cell `c` whose minimum-image separation
     /// `d = q_a - q_b` is shorter than `cutoff` (`cutoff` at most the cell edge of the last bin), in scan order, except
     /// the pairs that cross a sliding boundary (see
-    /// [`CellGrid::for_each_sliding_pair_of_cell`]). `a`, `b` and `pos` are in cell order.
+    /// [`CellGrid::for_each_sliding_pair_of_cell`]). `a`, `b`, `pos` and `cols` (the same
+    /// positions as columns) are in cell order.
     ///
     /// Periodic images come from a per-row shift instead of a minimum-image test per pair.
-    pub fn for_each_pair_of_cell(
+    #[allow(clippy::too_many_arguments)]
+    fn for_each_pair_of_cell(
         &self,
         c: usize,
         pos: &[Vec3],
+        cols: &Columns,
         bx: &PeriodicBox,
         shear: Option<&LeesEdwards>,
         cutoff: f64,
@@ -263,23 +267,21 @@ impl CellGrid {
             }
             return;
         }
-        for a in own.clone() {
-            let qa = pos[a];
-            for (b, qb) in pos[a + 1..own.end].iter().enumerate() {
-                let d = qa - qb;
-                if d.norm_squared() < cut2 {
-                    f(a as u32, (a + 1 + b) as u32, d);
-                }
-            }
-        }
         let sliding = is_sliding(shear);
         let [nx, ny, nz] = self.dims;
         let (cx, cy, cz) = self.coordinates(c);
         let l = bx.lengths();
         with_stencil(|stencil| {
-            let (z, sz) = wrap_cell(cz, 1, nz, l.z);
-            let above = self.range((cx * ny + cy) * nz + z);
-            stencil.push(pos, above, Vec3::new(0.0, 0.0, sz));
+            // The own cell first, then the one above: one range unless that one wraps.
+            if cz + 1 < nz {
+                let both = own.start..self.cell_start[c + 2] as usize;
+                stencil.push(cols, both, Vec3::zeros());
+            } else {
+                stencil.push(cols, own.clone(), Vec3::zeros());
+                let (z, sz) = wrap_cell(cz, 1, nz, l.z);
+                let above = self.range((cx * ny + cy) * nz + z);
+                stencil.push(cols, above, Vec3::new(0.0, 0.0, sz));
+            }
             for [dx, dy] in ROWS {
                 let (y, sy) = wrap_cell(cy, dy, ny, l.y);
                 if sliding && sy != 0.0 {
@@ -290,15 +292,15 @@ impl CellGrid {
                 if cz >= 1 && cz + 1 < nz {
                     let cells = self.cell_start[row + cz - 1] as usize
                         ..self.cell_start[row + cz + 2] as usize;
-                    stencil.push(pos, cells, Vec3::new(sx, sy, 0.0));
+                    stencil.push(cols, cells, Vec3::new(sx, sy, 0.0));
                 } else {
                     for dz in [-1, 0, 1] {
                         let (z, sz) = wrap_cell(cz, dz, nz, l.z);
-                        stencil.push(pos, self.range(row + z), Vec3::new(sx, sy, sz));
+                        stencil.push(cols, self.range(row + z), Vec3::new(sx, sy, sz));
                     }
                 }
             }
-            stencil.pairs(pos, own, cut2, &mut f);
+            stencil.pairs(cols, own, cut2, &mut f);
         });
     }
 
@@ -348,8 +350,9 @@ impl CellGrid {
         cutoff: f64,
         mut f: impl FnMut(u32, u32, Vec3),
     ) {
+        let cols = Columns::new(pos);
         for c in 0..self.cells() {
-            self.for_each_pair_of_cell(c, pos, bx, shear, cutoff, &mut f);
+            self.for_each_pair_of_cell(c, pos, &cols, bx, shear, cutoff, &mut f);
             if let Some(le) = shear {
                 self.for_each_sliding_pair_of_cell(c, pos, bx, le, cutoff, &mut f);
             }
@@ -370,8 +373,9 @@ impl CellGrid {
         items: &mut Parts<T>,
         emit: impl Fn(u32, u32, Vec3, &mut Vec<T>) + Sync,
     ) -> Runs {
+        let cols = Columns::new(pos);
         let found = chunked::flat_map_ordered(&self.sweep, items, |&c, out| {
-            self.for_each_pair_of_cell(c as usize, pos, bx, shear, cutoff, |a, b, d| {
+            self.for_each_pair_of_cell(c as usize, pos, &cols, bx, shear, cutoff, |a, b, d| {
                 emit(a, b, d, out)
             })
         });

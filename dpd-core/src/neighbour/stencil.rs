@@ -2,13 +2,15 @@
 //!
 //! Testing the candidates of the stencil one by one, with a branch per candidate, spent most
 //! of the scan in mispredicted branches and short loops (a row of three cells holds about nine
-//! particles). Here the candidates of the whole stencil (the cell above and the four rows,
-//! each moved by its periodic shift) are copied once per cell into separate x, y and z
-//! arrays, and each particle of the cell is tested against all of them in blocks: a loop the
-//! compiler vectorises computes in/out flags, a branch-free loop gathers the hits, and only
-//! the hits reach the caller. On x86_64 CPUs with AVX2 (detected at run time) the same code is
-//! compiled with AVX2 enabled; both paths compute the same numbers (neither contracts
-//! multiply-adds).
+//! particles). Here the positions are first laid out as x, y and z columns in cell order
+//! ([`Columns`], once per scan). For each cell its own particles, the cell above and the four
+//! rows, each moved by its periodic shift, are copied from the columns into one stencil buffer
+//! with fixed-width copies (no loop whose trip count varies from cell to cell), and each
+//! particle of the cell is tested against the rest of its own cell and the whole stencil in
+//! blocks: a loop the compiler vectorises computes in/out flags, a branch-free loop gathers
+//! the hits, and only the hits reach the caller. On x86_64 CPUs with AVX2 (detected at run
+//! time) the same code is compiled with AVX2 enabled; both paths compute the same numbers
+//! (neither contracts multiply-adds).
 
 use crate::Vec3;
 use std::cell::RefCell;
@@ -16,6 +18,34 @@ use std::ops::Range;
 
 /// Candidates tested per block.
 const BLOCK: usize = 64;
+
+/// Entries moved per step of [`Stencil::push`]: a row of three cells (about nine particles at
+/// density 3) fits in one step.
+const WIDTH: usize = 16;
+
+/// Positions in cell order as separate x, y and z columns, followed by `WIDTH` zeros so that a
+/// fixed-width copy may read past the last particle.
+pub(super) struct Columns {
+    x: Vec<f64>,
+    y: Vec<f64>,
+    z: Vec<f64>,
+}
+
+impl Columns {
+    pub(super) fn new(pos: &[Vec3]) -> Self {
+        let column = |k: usize| {
+            let mut c = Vec::with_capacity(pos.len() + WIDTH);
+            c.extend(pos.iter().map(|q| q[k]));
+            c.resize(pos.len() + WIDTH, 0.0);
+            c
+        };
+        Columns {
+            x: column(0),
+            y: column(1),
+            z: column(2),
+        }
+    }
+}
 
 /// Candidates of one cell's stencil: position minus the periodic shift of its cell (so that
 /// `q_a - candidate` is the separation from particle `a` of the cell), and cell-order index.
@@ -44,35 +74,47 @@ pub(super) fn with_stencil<R>(body: impl FnOnce(&mut Stencil) -> R) -> R {
 }
 
 impl Stencil {
-    /// Append the particles `range` of `pos` (cell order), seen from a cell that must add
-    /// `shift` to its positions to sit next to them.
+    /// Append the particles `range` (cell-order indices into `cols`), seen from a cell that
+    /// must add `shift` to its positions to sit next to them.
     #[inline(always)]
-    pub(super) fn push(&mut self, pos: &[Vec3], range: Range<usize>, shift: Vec3) {
-        let (start, end) = (self.len, self.len + range.len());
-        if self.index.len() < end {
-            let grown = end.next_power_of_two().max(256);
+    pub(super) fn push(&mut self, cols: &Columns, range: Range<usize>, shift: Vec3) {
+        let (start, n) = (self.len, range.len());
+        // The last step writes up to WIDTH - 1 entries past the end; the next push or the
+        // length overwrites or ignores them.
+        let room = start + n.next_multiple_of(WIDTH);
+        if self.index.len() < room {
+            let grown = room.next_power_of_two().max(256);
             self.x.resize(grown, 0.0);
             self.y.resize(grown, 0.0);
             self.z.resize(grown, 0.0);
             self.index.resize(grown, 0);
         }
-        let slots = self.x[start..end]
-            .iter_mut()
-            .zip(&mut self.y[start..end])
-            .zip(&mut self.z[start..end])
-            .zip(&mut self.index[start..end]);
-        for ((((x, y), z), index), (b, q)) in slots.zip(range.clone().zip(&pos[range])) {
-            (*x, *y, *z, *index) = (q.x - shift.x, q.y - shift.y, q.z - shift.z, b as u32);
+        let mut k = 0;
+        while k < n {
+            let (from, to) = (
+                range.start + k..range.start + k + WIDTH,
+                start + k..start + k + WIDTH,
+            );
+            shifted(&mut self.x[to.clone()], &cols.x[from.clone()], shift.x);
+            shifted(&mut self.y[to.clone()], &cols.y[from.clone()], shift.y);
+            shifted(&mut self.z[to.clone()], &cols.z[from.clone()], shift.z);
+            let index: &mut [u32; WIDTH] = (&mut self.index[to]).try_into().unwrap();
+            for (l, i) in index.iter_mut().enumerate() {
+                *i = (from.start + l) as u32;
+            }
+            k += WIDTH;
         }
-        self.len = end;
+        self.len = start + n;
     }
 
     /// Call `f(a, b, d)` for every particle `a` of `own` (in order) and every candidate `b`
-    /// (in the order pushed) with `|d|^2 < cut2`, `d = q_a - (q_b - shift_b)`.
+    /// after `a` (in the order pushed) with `|d|^2 < cut2`, `d = q_a - (q_b - shift_b)`. The
+    /// first push must have been the particles `own` themselves, unshifted: each particle
+    /// meets the rest of its cell, then the other cells.
     #[inline(always)]
     pub(super) fn pairs(
         &self,
-        pos: &[Vec3],
+        cols: &Columns,
         own: Range<usize>,
         cut2: f64,
         f: &mut impl FnMut(u32, u32, Vec3),
@@ -80,9 +122,9 @@ impl Stencil {
         #[cfg(target_arch = "x86_64")]
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the feature was detected.
-            return unsafe { self.pairs_avx2(pos, own, cut2, f) };
+            return unsafe { self.pairs_avx2(cols, own, cut2, f) };
         }
-        self.pairs_portable(pos, own, cut2, f)
+        self.pairs_portable(cols, own, cut2, f)
     }
 
     /// [`Stencil::pairs_portable`] compiled with AVX2.
@@ -93,28 +135,31 @@ impl Stencil {
     #[target_feature(enable = "avx2")]
     unsafe fn pairs_avx2(
         &self,
-        pos: &[Vec3],
+        cols: &Columns,
         own: Range<usize>,
         cut2: f64,
         f: &mut impl FnMut(u32, u32, Vec3),
     ) {
-        self.pairs_portable(pos, own, cut2, f)
+        self.pairs_portable(cols, own, cut2, f)
     }
 
     #[inline(always)]
     fn pairs_portable(
         &self,
-        pos: &[Vec3],
+        cols: &Columns,
         own: Range<usize>,
         cut2: f64,
         f: &mut impl FnMut(u32, u32, Vec3),
     ) {
         let m = self.len;
+        debug_assert!(own
+            .clone()
+            .eq(self.index[..own.len()].iter().map(|&i| i as usize)));
         // Written before they are read, block by block.
         let (mut inside, mut hits) = ([false; BLOCK], [0u8; BLOCK]);
-        for a in own {
-            let qa = pos[a];
-            let mut start = 0;
+        for (offset, a) in own.enumerate() {
+            let qa = Vec3::new(cols.x[a], cols.y[a], cols.z[a]);
+            let mut start = offset + 1;
             while start < m {
                 let end = (start + BLOCK).min(m);
                 let (x, y, z) = (
@@ -144,38 +189,78 @@ impl Stencil {
     }
 }
 
+/// `out[l] = column[l] - shift` for the first `WIDTH` entries of both.
+#[inline(always)]
+fn shifted(out: &mut [f64], column: &[f64], shift: f64) {
+    // Loaded into a local first: the compiler cannot tell that `out` and `column` do not
+    // overlap once this is inlined, and would copy element by element.
+    let mut moved: [f64; WIDTH] = column.try_into().unwrap();
+    for m in &mut moved {
+        *m -= shift;
+    }
+    out.copy_from_slice(&moved);
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use rand::{Rng, SeedableRng};
 
     /// Every path finds exactly the pairs a direct test finds, in the documented order, also
-    /// when the stencil holds several blocks of candidates.
+    /// when pushes span several copy steps and the stencil several blocks of candidates.
     #[test]
     fn blocks_find_the_pairs_in_order() {
         let mut rng = rand::rngs::StdRng::seed_from_u64(5);
-        for candidates in [0, 1, 7, BLOCK - 1, BLOCK, BLOCK + 1, 3 * BLOCK + 5] {
+        for candidates in [
+            0,
+            1,
+            7,
+            WIDTH,
+            2 * WIDTH + 3,
+            BLOCK - 1,
+            BLOCK,
+            3 * BLOCK + 5,
+        ] {
             let pos: Vec<Vec3> = (0..candidates + 4)
                 .map(|_| Vec3::new(rng.random(), rng.random(), rng.random()))
                 .collect();
-            let (own, shift) = (0..4, Vec3::new(0.25, 0.0, -0.5));
+            let own = 0..4;
+            // Two pushes of candidates with different shifts after the own cell.
+            let middle = 4 + candidates / 3;
+            let shift = |b: usize| {
+                if b < middle {
+                    Vec3::new(0.25, 0.0, -0.5)
+                } else {
+                    Vec3::new(0.0, -0.125, 0.0)
+                }
+            };
             let cut2 = 0.3;
             let mut want = Vec::new();
             for a in own.clone() {
-                for b in 4..pos.len() {
-                    let d = pos[a] - (pos[b] - shift);
+                for b in a + 1..own.end {
+                    let d = pos[a] - pos[b];
+                    if d.norm_squared() < cut2 {
+                        want.push((a as u32, b as u32, d));
+                    }
+                }
+                for b in own.end..pos.len() {
+                    let d = pos[a] - (pos[b] - shift(b));
                     if d.norm_squared() < cut2 {
                         want.push((a as u32, b as u32, d));
                     }
                 }
             }
+            let cols = Columns::new(&pos);
             with_stencil(|stencil| {
-                stencil.push(&pos, 4..pos.len(), shift);
+                stencil.push(&cols, own.clone(), Vec3::zeros());
+                stencil.push(&cols, own.end..middle, shift(own.end));
+                stencil.push(&cols, middle..pos.len(), shift(middle));
                 let mut got = Vec::new();
-                stencil.pairs(&pos, own.clone(), cut2, &mut |a, b, d| got.push((a, b, d)));
+                stencil.pairs(&cols, own.clone(), cut2, &mut |a, b, d| got.push((a, b, d)));
                 assert_eq!(got, want, "{candidates} candidates");
                 got.clear();
-                stencil.pairs_portable(&pos, own.clone(), cut2, &mut |a, b, d| got.push((a, b, d)));
+                stencil
+                    .pairs_portable(&cols, own.clone(), cut2, &mut |a, b, d| got.push((a, b, d)));
                 assert_eq!(got, want, "{candidates} candidates, portable");
             });
         }
