@@ -227,13 +227,7 @@ impl PairTable {
         order: SweepOrder,
         visit: impl Fn(&Pair) -> T + Sync,
     ) -> T {
-        self.visit_runs(order, |_, pairs| match order {
-            SweepOrder::Forward => pairs.iter().fold(T::default(), |t, p| t.add(visit(p))),
-            SweepOrder::Reverse => pairs
-                .iter()
-                .rev()
-                .fold(T::default(), |t, p| t.add(visit(p))),
-        })
+        self.visit_with(order, None, |p, _| visit(p))
     }
 
     /// [`PairTable::visit_sum`] handing each pair its standard normal of `noise` (0 with
@@ -246,23 +240,33 @@ impl PairTable {
         visit: impl Fn(&Pair, f64) -> T + Sync,
     ) -> T {
         let Some(noise) = noise else {
-            return self.visit_sum(order, |p| visit(p, 0.0));
+            return self.visit_with(order, None, visit);
         };
         self.draw_normals(noise);
-        let normals = &self.normals;
+        self.visit_with(order, Some(&self.normals), visit)
+    }
+
+    /// [`PairTable::visit_sum`] handing each pair its entry of `normals` (table order; 0 with
+    /// `None`). `visit` is called from one place only, so that the compiler inlines it into
+    /// the loop over a run.
+    fn visit_with<T: Virial>(
+        &self,
+        order: SweepOrder,
+        normals: Option<&[f64]>,
+        visit: impl Fn(&Pair, f64) -> T + Sync,
+    ) -> T {
         self.visit_runs(order, |range, pairs| {
-            let z = &normals[range];
-            match order {
-                SweepOrder::Forward => pairs
-                    .iter()
-                    .zip(z)
-                    .fold(T::default(), |t, (p, &z)| t.add(visit(p, z))),
-                SweepOrder::Reverse => pairs
-                    .iter()
-                    .zip(z)
-                    .rev()
-                    .fold(T::default(), |t, (p, &z)| t.add(visit(p, z))),
+            let n = pairs.len();
+            let z = normals.map(|z| &z[range][..n]);
+            let mut t = T::default();
+            for k in 0..n {
+                let k = match order {
+                    SweepOrder::Forward => k,
+                    SweepOrder::Reverse => n - 1 - k,
+                };
+                t = t.add(visit(&pairs[k], z.map_or(0.0, |z| z[k])));
             }
+            t
         })
     }
 
