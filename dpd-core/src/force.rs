@@ -72,9 +72,9 @@ fn full_with<const SHIFTED: bool, V: Virial>(sys: &mut System, stream: u8) -> V 
         stream,
         id,
     });
-    pairs.visit_sum_noisy(SweepOrder::Forward, normals, |pair, z| {
+    pairs.visit_sum_noisy(SweepOrder::Forward, normals, |pair, z, dvx| {
         let (i, j) = (pair.i as usize, pair.j as usize);
-        let u = pair.normal_velocity::<SHIFTED>(p[i] * inv_mass[i], p[j] * inv_mass[j]);
+        let u = pair.normal_velocity::<SHIFTED>(p[i] * inv_mass[i], p[j] * inv_mass[j], dvx);
         let conservative = params.a(kind[i], kind[j]) * pair.w;
         let mut f = conservative - gamma * pair.wr * pair.wr * u;
         if noise > 0.0 {

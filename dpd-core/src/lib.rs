@@ -9,7 +9,7 @@
 //!   `q_ij = q_i - q_j` under minimum image, `e_ij = q_ij / r_ij` points from j to i.
 //! - A sub-flow advances the state by a step length `h = c * dt`.
 //! - Shear ([`LeesEdwards`]): flow along x, gradient along y; a pair across the sliding
-//!   boundary carries the image's velocity shift in [`pairs::Pair::dvx`].
+//!   boundary carries the image's velocity shift in [`pairs::PairTable::shifts`].
 //! - Pairwise sweeps visit the interacting pairs in one documented order, colour by colour of
 //!   a cell colouring (see [`neighbour`]), or exactly that order reversed. The order does not
 //!   depend on the thread count; cells of one colour are processed in parallel.

@@ -24,11 +24,6 @@ pub struct Pair {
     pub w: f64,
     /// Random weight `w_R = w^(s/2)`; the dissipative weight is `w_R^2`.
     pub wr: f64,
-    /// x-velocity to add to `v_i - v_j`: across a sliding Lees-Edwards boundary the partner
-    /// of i is an image of j moving at `v_j - dvx` along x, and a frozen wall particle moves
-    /// with its wall (`v_i - v_j` sees it at rest), so the dissipative and random forces see
-    /// `v_ij = v_i - v_j + (dvx, 0, 0)`. Zero for every other pair.
-    pub dvx: f64,
 }
 
 impl Pair {
@@ -39,13 +34,14 @@ impl Pair {
         rc * (1.0 - self.w)
     }
 
-    /// The pair's relative velocity along `e`, `e . (v_i - v_j + (dvx, 0, 0))`, with the shift
-    /// added only when `SHIFTED` (a compile-time switch, so that periodic sweeps do not pay).
+    /// The pair's relative velocity along `e`, `e . (v_i - v_j + (dvx, 0, 0))` for its velocity
+    /// shift `dvx` ([`PairTable::shifts`]), added only when `SHIFTED` (a compile-time switch,
+    /// so that periodic sweeps do not pay).
     #[inline(always)]
-    pub fn normal_velocity<const SHIFTED: bool>(&self, vi: Vec3, vj: Vec3) -> f64 {
+    pub fn normal_velocity<const SHIFTED: bool>(&self, vi: Vec3, vj: Vec3, dvx: f64) -> f64 {
         let u = self.e.dot(&(vi - vj));
         if SHIFTED {
-            u + self.e.x * self.dvx
+            u + self.e.x * dvx
         } else {
             u
         }
@@ -64,6 +60,11 @@ fn on_all_threads(n: usize) -> bool {
 #[derive(Clone, Debug, Default)]
 pub struct PairTable {
     pairs: Parts<Pair>,
+    /// Velocity shift of each pair, in table order; empty when no pair can have one. Kept
+    /// apart from [`Pair`] because only sheared boxes and walls have shifts, and every pair
+    /// loop streams the pairs.
+    shifts: Vec<f64>,
+    shifted: bool,
     groups: Runs,
     /// The pairs' standard normals of the last noisy visit, in table order (scratch).
     normals: Vec<f64>,
@@ -82,6 +83,15 @@ impl PairTable {
     /// The pairs in sweep order.
     pub fn iter(&self) -> impl DoubleEndedIterator<Item = &Pair> + '_ {
         self.pairs.iter()
+    }
+
+    /// The x-velocity `dvx` each pair adds to `v_i - v_j`, in sweep order, or `None` when there
+    /// is none (no shear, no walls). Across a sliding Lees-Edwards boundary the partner of i is
+    /// an image of j moving at `v_j - dvx` along x, and a frozen wall particle moves with its
+    /// wall (`v_i - v_j` sees it at rest), so the dissipative and random forces see
+    /// `v_ij = v_i - v_j + (dvx, 0, 0)`. Zero for every other pair.
+    pub fn shifts(&self) -> Option<&[f64]> {
+        self.shifted.then_some(&self.shifts)
     }
 
     /// Refill with the pairs of `list` that interact at positions `q`, keeping its order: from
@@ -106,26 +116,27 @@ impl PairTable {
             shear,
             params,
         };
+        self.shifted = shear.is_some() || walls.is_some();
+        self.shifts.clear();
         match (shear, walls) {
-            (None, None) => fill.into(
-                self,
-                |_, _, d| Some((bx.min_image(d), 0.0)),
-                |_, _, d| Some((d, 0.0)),
-            ),
+            (None, None) => fill.into(self, |_, _, d| Some(bx.min_image(d)), |_, _, d| Some(d)),
             // The scan's separation is the image, but the velocity shift needs the crossing
-            // count: recompute both.
+            // count: both come from the positions.
             (Some(le), _) => {
-                let image = |_, _, d| Some(le.min_image(bx, d));
-                let rescan =
-                    |i: u32, j: u32, _| Some(le.min_image(bx, q[i as usize] - q[j as usize]));
-                fill.into(self, image, rescan)
+                let image = |i: u32, j: u32| le.min_image(bx, q[i as usize] - q[j as usize]);
+                let from_positions = |i, j, _| Some(image(i, j).0);
+                fill.into(self, from_positions, from_positions);
+                let shifts = self.pairs.iter().map(|p| image(p.i, p.j).1);
+                self.shifts.extend(shifts);
             }
             (None, Some(w)) => {
-                let shift = |i: u32, j: u32, d: Vec3| {
-                    let (i, j) = (i as usize, j as usize);
-                    (!(w.frozen[i] && w.frozen[j])).then(|| (d, w.velocity_x[i] - w.velocity_x[j]))
+                let mobile = |i: u32, j: u32, d: Vec3| {
+                    (!(w.frozen[i as usize] && w.frozen[j as usize])).then_some(d)
                 };
-                fill.into(self, |i, j, d| shift(i, j, bx.min_image(d)), shift)
+                fill.into(self, |i, j, d| mobile(i, j, bx.min_image(d)), mobile);
+                let v = &w.velocity_x;
+                let shifts = self.pairs.iter().map(|p| v[p.i as usize] - v[p.j as usize]);
+                self.shifts.extend(shifts);
             }
         }
     }
@@ -141,16 +152,16 @@ struct Fill<'a> {
 }
 
 impl Fill<'_> {
-    /// Fill `table`: from the candidates with `image(i, j, q_i - q_j)` giving the minimum image
-    /// and the velocity shift, or `None` for a pair that does not interact (two frozen
-    /// particles); without skin from the grid's scan, with `scanned(i, j, d)` doing the same
-    /// for the scan's minimum-image separation `d`.
+    /// Fill `table`: from the candidates with `image(i, j, q_i - q_j)` giving the minimum
+    /// image, or `None` for a pair that does not interact (two frozen particles); without skin
+    /// from the grid's scan, with `scanned(i, j, d)` doing the same for the scan's
+    /// minimum-image separation `d`.
     #[inline(always)]
     fn into(
         self,
         table: &mut PairTable,
-        image: impl Fn(u32, u32, Vec3) -> Option<(Vec3, f64)> + Sync,
-        scanned: impl Fn(u32, u32, Vec3) -> Option<(Vec3, f64)> + Sync,
+        image: impl Fn(u32, u32, Vec3) -> Option<Vec3> + Sync,
+        scanned: impl Fn(u32, u32, Vec3) -> Option<Vec3> + Sync,
     ) {
         let Fill {
             list,
@@ -162,7 +173,7 @@ impl Fill<'_> {
         let rc = params.rc();
         let rc2 = rc * rc;
         let inv_rc = 1.0 / rc;
-        let pair = |i: u32, j: u32, (d, dvx): (Vec3, f64)| -> Option<Pair> {
+        let pair = |i: u32, j: u32, d: Vec3| -> Option<Pair> {
             let r2 = d.norm_squared();
             (r2 < rc2 && r2 > 0.0).then(|| {
                 let r = r2.sqrt();
@@ -173,7 +184,6 @@ impl Fill<'_> {
                     e: d * (1.0 / r),
                     w,
                     wr: params.w_r(w),
-                    dvx,
                 }
             })
         };
@@ -227,17 +237,17 @@ impl PairTable {
         order: SweepOrder,
         visit: impl Fn(&Pair) -> T + Sync,
     ) -> T {
-        self.visit_with(order, None, |p, _| visit(p))
+        self.visit_with(order, None, |p, _, _| visit(p))
     }
 
     /// [`PairTable::visit_sum`] handing each pair its standard normal of `noise` (0 with
-    /// `None`). The normals are drawn first, for the whole table at once
+    /// `None`) and its velocity shift (0 without, see [`PairTable::shifts`]). The normals are drawn first, for the whole table at once
     /// ([`crate::rng::pair_normals`]); they are the numbers [`crate::rng::pair_normal`] gives.
     pub(crate) fn visit_sum_noisy<T: Virial>(
         &mut self,
         order: SweepOrder,
         noise: Option<Noise>,
-        visit: impl Fn(&Pair, f64) -> T + Sync,
+        visit: impl Fn(&Pair, f64, f64) -> T + Sync,
     ) -> T {
         let Some(noise) = noise else {
             return self.visit_with(order, None, visit);
@@ -247,24 +257,27 @@ impl PairTable {
     }
 
     /// [`PairTable::visit_sum`] handing each pair its entry of `normals` (table order; 0 with
-    /// `None`). `visit` is called from one place only, so that the compiler inlines it into
-    /// the loop over a run.
+    /// `None`) and its velocity shift ([`PairTable::shifts`], 0 without). `visit` is called
+    /// from one place only, so that the compiler inlines it into the loop over a run.
     fn visit_with<T: Virial>(
         &self,
         order: SweepOrder,
         normals: Option<&[f64]>,
-        visit: impl Fn(&Pair, f64) -> T + Sync,
+        visit: impl Fn(&Pair, f64, f64) -> T + Sync,
     ) -> T {
+        let shifts = self.shifts();
         self.visit_runs(order, |range, pairs| {
             let n = pairs.len();
-            let z = normals.map(|z| &z[range][..n]);
+            let z = normals.map(|z| &z[range.clone()][..n]);
+            let dvx = shifts.map(|s| &s[range][..n]);
             let mut t = T::default();
             for k in 0..n {
                 let k = match order {
                     SweepOrder::Forward => k,
                     SweepOrder::Reverse => n - 1 - k,
                 };
-                t = t.add(visit(&pairs[k], z.map_or(0.0, |z| z[k])));
+                let (z, dvx) = (z.map_or(0.0, |z| z[k]), dvx.map_or(0.0, |s| s[k]));
+                t = t.add(visit(&pairs[k], z, dvx));
             }
             t
         })

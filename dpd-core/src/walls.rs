@@ -4,8 +4,8 @@
 //! A wall is a slab of frozen particles (inverse mass 0: no force moves them) outside the
 //! channel `lower <= z < upper`. Frozen particles interact with the fluid through all three
 //! pair forces; the dissipative and random forces see them moving at their wall's velocity
-//! (along x), which enters a pair as its velocity shift [`crate::pairs::Pair::dvx`]; pairs of two
-//! frozen particles are left out. The box stays periodic along z: the two wall slabs together
+//! (along x), which enters a pair as its velocity shift
+//! ([`crate::pairs::PairTable::shifts`]); pairs of two frozen particles are left out. The box stays periodic along z: the two wall slabs together
 //! must be at least `r_c` thick, so that the fluid never sees itself across them, and nothing
 //! in the neighbour search changes.
 //!

@@ -73,7 +73,7 @@ pub fn exponential_velocity(sys: &mut System, h: f64, stream: u8, noise: EtdNois
     sys.ensure_pairs();
     sys.counters.force_evaluations += 1;
     // Pairs across a Lees-Edwards boundary or with a moving wall particle carry a velocity
-    // shift (`Pair::dvx`).
+    // shift (`PairTable::shifts`).
     let shifted = sys.shifted_pairs();
     let recording = sys.impulses.is_some();
     let System {
@@ -96,14 +96,16 @@ pub fn exponential_velocity(sys: &mut System, h: f64, stream: u8, noise: EtdNois
     let mut rate = vec![Vec3::zeros(); n];
     let mut kick = vec![Vec3::zeros(); n];
     let mut pair_forces = Vec::with_capacity(if recording { pairs.len() } else { 0 });
-    for pair in pairs.iter() {
+    let shifts = pairs.shifts();
+    for (k, pair) in pairs.iter().enumerate() {
+        let dvx = shifts.map_or(0.0, |s| s[k]);
         let (i, j) = (pair.i as usize, pair.j as usize);
         let wd = pair.wr * pair.wr;
         let (vi, vj) = (p[i] * inv_mass[i], p[j] * inv_mass[j]);
         let u = if shifted {
-            pair.normal_velocity::<true>(vi, vj)
+            pair.normal_velocity::<true>(vi, vj, dvx)
         } else {
-            pair.normal_velocity::<false>(vi, vj)
+            pair.normal_velocity::<false>(vi, vj, dvx)
         };
         let dissipative = -gamma * wd * u;
         let f = (params.a(kind[i], kind[j]) * pair.w + dissipative) * pair.e;

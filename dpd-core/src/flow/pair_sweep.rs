@@ -89,7 +89,7 @@ fn sweep_with<const SHIFTED: bool, V: Virial>(
         id,
     });
     let p = Disjoint::new(p);
-    pairs.visit_sum_noisy(order, noise, |pair, r| {
+    pairs.visit_sum_noisy(order, noise, |pair, r, dvx| {
         let (i, j) = (pair.i as usize, pair.j as usize);
         // SAFETY: `visit` never hands two pairs sharing a particle to different threads, and
         // the two references below are to distinct particles (i != j).
@@ -104,7 +104,7 @@ fn sweep_with<const SHIFTED: bool, V: Virial>(
         let (slope, offset) = update(&state);
         let reduced = 1.0 / mu;
         let (slope, offset) = (slope * reduced, offset * reduced);
-        let u = pair.normal_velocity::<SHIFTED>(*pi * inv_mass[i], *pj * inv_mass[j]);
+        let u = pair.normal_velocity::<SHIFTED>(*pi * inv_mass[i], *pj * inv_mass[j], dvx);
         let impulse = slope * u + offset;
         let dp = impulse * pair.e;
         *pi += dp;
