@@ -12,7 +12,9 @@
 //! time) the same code is compiled with AVX2 enabled; both paths compute the same numbers
 //! (neither contracts multiply-adds).
 
+use crate::system::on_all_threads;
 use crate::Vec3;
+use rayon::prelude::*;
 use std::cell::RefCell;
 use std::ops::Range;
 
@@ -32,18 +34,31 @@ pub(super) struct Columns {
 }
 
 impl Columns {
+    /// The columns of `pos`, filled on all threads for large systems.
     pub(super) fn new(pos: &[Vec3]) -> Self {
-        let column = |k: usize| {
-            let mut c = Vec::with_capacity(pos.len() + WIDTH);
-            c.extend(pos.iter().map(|q| q[k]));
-            c.resize(pos.len() + WIDTH, 0.0);
-            c
+        let n = pos.len();
+        let (mut x, mut y, mut z) = (
+            vec![0.0; n + WIDTH],
+            vec![0.0; n + WIDTH],
+            vec![0.0; n + WIDTH],
+        );
+        let fill = |x: &mut [f64], y: &mut [f64], z: &mut [f64], pos: &[Vec3]| {
+            for (((x, y), z), q) in x.iter_mut().zip(y).zip(z).zip(pos) {
+                (*x, *y, *z) = (q.x, q.y, q.z);
+            }
         };
-        Columns {
-            x: column(0),
-            y: column(1),
-            z: column(2),
+        const CHUNK: usize = 4096;
+        let (xs, ys, zs) = (&mut x[..n], &mut y[..n], &mut z[..n]);
+        if on_all_threads(n) {
+            xs.par_chunks_mut(CHUNK)
+                .zip(ys.par_chunks_mut(CHUNK))
+                .zip(zs.par_chunks_mut(CHUNK))
+                .zip(pos.par_chunks(CHUNK))
+                .for_each(|(((x, y), z), pos)| fill(x, y, z, pos));
+        } else {
+            fill(xs, ys, zs, pos);
         }
+        Columns { x, y, z }
     }
 }
 
