@@ -363,7 +363,7 @@ impl System {
     pub fn body_force(&self) -> Option<Vec3> {
         self.body_force
     }
-    /// Whether some pairs carry a velocity shift (`Pair::dvx`): under shear or with walls.
+    /// Whether some pairs carry a velocity shift (`PairTable::shifts`): under shear or with walls.
     pub(crate) fn shifted_pairs(&self) -> bool {
         self.shear.is_some() || self.walls.is_some()
     }
