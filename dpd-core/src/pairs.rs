@@ -60,10 +60,11 @@ fn on_all_threads(n: usize) -> bool {
 #[derive(Clone, Debug, Default)]
 pub struct PairTable {
     pairs: Parts<Pair>,
-    /// Velocity shift of each pair, in table order; empty when no pair can have one. Kept
-    /// apart from [`Pair`] because only sheared boxes and walls have shifts, and every pair
-    /// loop streams the pairs.
+    /// Velocity shift of each pair, in table order, when `shifted`; else empty. Kept apart
+    /// from [`Pair`] because only sheared boxes and walls have shifts, and every pair loop
+    /// streams the pairs.
     shifts: Vec<f64>,
+    /// Whether the last fill was under shear or with walls (see [`PairTable::shifts`]).
     shifted: bool,
     groups: Runs,
     /// The pairs' standard normals of the last noisy visit, in table order (scratch).
@@ -241,8 +242,9 @@ impl PairTable {
     }
 
     /// [`PairTable::visit_sum`] handing each pair its standard normal of `noise` (0 with
-    /// `None`) and its velocity shift (0 without, see [`PairTable::shifts`]). The normals are drawn first, for the whole table at once
-    /// ([`crate::rng::pair_normals`]); they are the numbers [`crate::rng::pair_normal`] gives.
+    /// `None`) and its velocity shift (0 without, see [`PairTable::shifts`]). The normals are
+    /// drawn first, for the whole table at once ([`crate::rng::pair_normals`]); they are the
+    /// numbers [`crate::rng::pair_normal`] gives.
     pub(crate) fn visit_sum_noisy<T: Virial>(
         &mut self,
         order: SweepOrder,

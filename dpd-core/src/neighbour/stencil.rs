@@ -5,12 +5,12 @@
 //! particles). Here the positions are first laid out as x, y and z columns in cell order
 //! ([`Columns`], once per scan). For each cell its own particles, the cell above and the four
 //! rows, each moved by its periodic shift, are copied from the columns into one stencil buffer
-//! with fixed-width copies (no loop whose trip count varies from cell to cell), and each
-//! particle of the cell is tested against the rest of its own cell and the whole stencil in
-//! blocks: a loop the compiler vectorises computes in/out flags, a branch-free loop gathers
-//! the hits, and only the hits reach the caller. On x86_64 CPUs with AVX2 (detected at run
-//! time) the same code is compiled with AVX2 enabled; both paths compute the same numbers
-//! (neither contracts multiply-adds).
+//! in steps of a fixed width (one step for almost every range, so the copy loops hardly ever
+//! mispredict), and each particle of the cell is tested against the rest of its own cell and
+//! the whole stencil in blocks: a loop the compiler vectorises computes in/out flags, a
+//! branch-free loop gathers the hits, and only the hits reach the caller. On x86_64 CPUs with
+//! AVX2 (detected at run time) the tests are compiled with AVX2 enabled; both paths compute
+//! the same numbers (neither contracts multiply-adds).
 
 use crate::system::on_all_threads;
 use crate::Vec3;
