@@ -37,6 +37,29 @@ fn trajectory_is_identical_for_any_thread_count() {
     }
 }
 
+/// Above 16 384 particles the per-particle loops (binning, permutation, drifts, kicks, the
+/// scan's position columns, the blow-up guard) split across threads too.
+#[test]
+fn large_systems_are_identical_for_any_thread_count() {
+    for scheme in [&Aboba as &(dyn Scheme + Sync), &VelocityVerlet] {
+        let runs: Vec<System> = [1, 2]
+            .iter()
+            .map(|&threads| {
+                common::with_threads(threads, || {
+                    let mut sys = common::system(20_000, 3.0, Params::builder(), 0.04, 5);
+                    sys.advance(scheme, 10).unwrap();
+                    sys
+                })
+            })
+            .collect();
+        assert!(
+            common::same_bits(&runs[0], &runs[1]),
+            "{}: 1 vs 2 threads",
+            scheme.name()
+        );
+    }
+}
+
 #[test]
 fn measuring_does_not_change_the_trajectory() {
     for scheme in [&Aboba as &dyn Scheme, &DpdS1, &VelocityVerlet] {

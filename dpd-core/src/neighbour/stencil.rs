@@ -221,6 +221,32 @@ mod tests {
     use super::*;
     use rand::{Rng, SeedableRng};
 
+    /// The columns hold the positions followed by the zero padding, also when they are filled
+    /// on several threads (above the size where the per-particle loops split).
+    #[test]
+    fn columns_are_the_positions_on_any_thread_count() {
+        let mut rng = rand::rngs::StdRng::seed_from_u64(9);
+        let pos: Vec<Vec3> = (0..20_000)
+            .map(|_| Vec3::new(rng.random(), rng.random(), rng.random()))
+            .collect();
+        for threads in [1, 3] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let cols = pool.install(|| Columns::new(&pos));
+            for (k, column) in [&cols.x, &cols.y, &cols.z].into_iter().enumerate() {
+                let want: Vec<f64> = pos.iter().map(|q| q[k]).collect();
+                assert_eq!(column[..pos.len()], want[..], "axis {k}, {threads} threads");
+                assert_eq!(
+                    column[pos.len()..],
+                    [0.0; WIDTH],
+                    "padding, {threads} threads"
+                );
+            }
+        }
+    }
+
     /// Every path finds exactly the pairs a direct test finds, in the documented order, also
     /// when pushes span several copy steps and the stencil several blocks of candidates.
     #[test]
