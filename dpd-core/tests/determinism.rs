@@ -6,34 +6,40 @@ use dpd_core::observe::thermo;
 use dpd_core::reference::{Aboba, DpdS1, VelocityVerlet};
 use dpd_core::{Params, Scheme, System};
 
-/// A box large enough (about 20 000 interacting pairs) for the sweeps to run in parallel.
-fn big_box() -> System {
-    common::system(3000, 3.0, Params::builder(), 0.04, 17)
+/// `scheme` run for `steps` from `start()` once for each thread count, and every run against
+/// the first: the same bits.
+fn same_on_any_thread_count(
+    scheme: &(dyn Scheme + Sync),
+    threads: &[usize],
+    start: impl Fn() -> System + Sync,
+    steps: u64,
+) {
+    let runs: Vec<System> = threads
+        .iter()
+        .map(|&t| {
+            common::with_threads(t, || {
+                let mut sys = start();
+                sys.advance(scheme, steps).unwrap();
+                sys
+            })
+        })
+        .collect();
+    for (run, t) in runs.iter().zip(threads).skip(1) {
+        assert!(
+            common::same_bits(&runs[0], run),
+            "{}: {} vs {t} threads",
+            scheme.name(),
+            threads[0]
+        );
+    }
 }
 
 #[test]
 fn trajectory_is_identical_for_any_thread_count() {
+    // About 20 000 interacting pairs: the sweeps run in parallel.
+    let big_box = || common::system(3000, 3.0, Params::builder(), 0.04, 17);
     for scheme in [&Aboba as &(dyn Scheme + Sync), &DpdS1, &VelocityVerlet] {
-        let runs: Vec<System> = [1, 2, 3]
-            .iter()
-            .map(|&threads| {
-                common::with_threads(threads, || {
-                    let mut sys = big_box();
-                    sys.advance(scheme, 40).unwrap();
-                    sys
-                })
-            })
-            .collect();
-        assert!(
-            common::same_bits(&runs[0], &runs[1]),
-            "{}: 1 vs 2 threads",
-            scheme.name()
-        );
-        assert!(
-            common::same_bits(&runs[0], &runs[2]),
-            "{}: 1 vs 3 threads",
-            scheme.name()
-        );
+        same_on_any_thread_count(scheme, &[1, 2, 3], big_box, 40);
     }
 }
 
@@ -41,22 +47,9 @@ fn trajectory_is_identical_for_any_thread_count() {
 /// scan's position columns, the blow-up guard) split across threads too.
 #[test]
 fn large_systems_are_identical_for_any_thread_count() {
+    let large = || common::system(20_000, 3.0, Params::builder(), 0.04, 5);
     for scheme in [&Aboba as &(dyn Scheme + Sync), &VelocityVerlet] {
-        let runs: Vec<System> = [1, 2]
-            .iter()
-            .map(|&threads| {
-                common::with_threads(threads, || {
-                    let mut sys = common::system(20_000, 3.0, Params::builder(), 0.04, 5);
-                    sys.advance(scheme, 10).unwrap();
-                    sys
-                })
-            })
-            .collect();
-        assert!(
-            common::same_bits(&runs[0], &runs[1]),
-            "{}: 1 vs 2 threads",
-            scheme.name()
-        );
+        same_on_any_thread_count(scheme, &[1, 2], large, 10);
     }
 }
 

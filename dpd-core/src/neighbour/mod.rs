@@ -235,15 +235,13 @@ impl CellGrid {
     /// Call `f(a, b, d)` for every pair owned by cell `c` whose minimum-image separation
     /// `d = q_a - q_b` is shorter than `cutoff` (`cutoff` at most the cell edge of the last bin), in scan order, except
     /// the pairs that cross a sliding boundary (see
-    /// [`CellGrid::for_each_sliding_pair_of_cell`]). `a`, `b`, `pos` and `cols` (the same
-    /// positions as columns) are in cell order.
+    /// [`CellGrid::for_each_sliding_pair_of_cell`]). `a`, `b` and the positions `cols` are in
+    /// cell order.
     ///
     /// Periodic images come from a per-row shift instead of a minimum-image test per pair.
-    #[allow(clippy::too_many_arguments)]
     fn for_each_pair_of_cell(
         &self,
         c: usize,
-        pos: &[Vec3],
         cols: &Columns,
         bx: &PeriodicBox,
         shear: Option<&LeesEdwards>,
@@ -259,7 +257,7 @@ impl CellGrid {
             };
             for a in own.clone() {
                 for b in a + 1..own.end {
-                    let d = image(pos[a] - pos[b]);
+                    let d = image(cols.position(a) - cols.position(b));
                     if d.norm_squared() < cut2 {
                         f(a as u32, b as u32, d);
                     }
@@ -352,7 +350,7 @@ impl CellGrid {
     ) {
         let cols = Columns::new(pos);
         for c in 0..self.cells() {
-            self.for_each_pair_of_cell(c, pos, &cols, bx, shear, cutoff, &mut f);
+            self.for_each_pair_of_cell(c, &cols, bx, shear, cutoff, &mut f);
             if let Some(le) = shear {
                 self.for_each_sliding_pair_of_cell(c, pos, bx, le, cutoff, &mut f);
             }
@@ -375,7 +373,7 @@ impl CellGrid {
     ) -> Runs {
         let cols = Columns::new(pos);
         let found = chunked::flat_map_ordered(&self.sweep, items, |&c, out| {
-            self.for_each_pair_of_cell(c as usize, pos, &cols, bx, shear, cutoff, |a, b, d| {
+            self.for_each_pair_of_cell(c as usize, &cols, bx, shear, cutoff, |a, b, d| {
                 emit(a, b, d, out)
             })
         });

@@ -60,6 +60,12 @@ impl Columns {
         }
         Columns { x, y, z }
     }
+
+    /// Position `k` (cell order).
+    #[inline(always)]
+    pub(super) fn position(&self, k: usize) -> Vec3 {
+        Vec3::new(self.x[k], self.y[k], self.z[k])
+    }
 }
 
 /// Candidates of one cell's stencil: position minus the periodic shift of its cell (so that
@@ -173,7 +179,7 @@ impl Stencil {
         // Written before they are read, block by block.
         let (mut inside, mut hits) = ([false; BLOCK], [0u8; BLOCK]);
         for (offset, a) in own.enumerate() {
-            let qa = Vec3::new(cols.x[a], cols.y[a], cols.z[a]);
+            let qa = cols.position(a);
             let mut start = offset + 1;
             while start < m {
                 let end = (start + BLOCK).min(m);
