@@ -4,9 +4,6 @@
 use rayon::prelude::*;
 use std::ops::Range;
 
-/// Below this many items the work is not split across threads.
-const PARALLEL_MIN_ITEMS: usize = 64;
-
 /// A sequence stored as consecutive parts, one per chunk of the work that produced it, so that
 /// threads fill their parts in place and nothing is copied to join them. The parts keep their
 /// allocations between fills.
@@ -72,18 +69,20 @@ impl<U> Parts<U> {
 }
 
 /// Apply `f` to every item, each appending its outputs to a buffer; refill `out` with all
-/// outputs in item order and return the number each item produced. The result does not depend
-/// on the thread count: chunks are fixed by the item count alone and their parts are read in
-/// order.
+/// outputs in item order and return the number each item produced. When `parallel` and the
+/// pool has more than one thread, the items are split into up to 64 chunks of consecutive
+/// items, filled on all threads; the result does not depend on the thread count, since the
+/// parts are read in order.
 pub(crate) fn flat_map_ordered<T: Sync, U: Send>(
     items: &[T],
     out: &mut Parts<U>,
+    parallel: bool,
     f: impl Fn(&T, &mut Vec<U>) + Sync,
 ) -> Vec<u32> {
-    let chunk = if items.len() < PARALLEL_MIN_ITEMS || rayon::current_num_threads() == 1 {
-        items.len().max(1)
+    let chunk = if parallel && rayon::current_num_threads() > 1 {
+        items.len().div_ceil(64).max(1)
     } else {
-        items.len().div_ceil(64).max(16)
+        items.len().max(1)
     };
     let chunks = items.len().div_ceil(chunk);
     out.parts.resize_with(chunks, Vec::new);
@@ -148,10 +147,10 @@ mod tests {
             .build()
             .unwrap();
         let (mut out_a, mut out_b) = (Parts::default(), Parts::default());
-        let a = one.install(|| flat_map_ordered(&items, &mut out_a, f));
+        let a = one.install(|| flat_map_ordered(&items, &mut out_a, true, f));
         // A second fill reuses the parts.
-        three.install(|| flat_map_ordered(&items[..10], &mut out_b, f));
-        let b = three.install(|| flat_map_ordered(&items, &mut out_b, f));
+        three.install(|| flat_map_ordered(&items[..10], &mut out_b, true, f));
+        let b = three.install(|| flat_map_ordered(&items, &mut out_b, true, f));
         assert_eq!(a, b);
         let (all_a, all_b): (Vec<u32>, Vec<u32>) = (
             out_a.iter().copied().collect(),

@@ -56,7 +56,7 @@ fn on_all_threads(n: usize) -> bool {
     n >= PARALLEL_MIN_PAIRS && rayon::current_num_threads() > 1
 }
 
-/// The interacting pairs in sweep order, grouped into cell runs and colours.
+/// The interacting pairs in sweep order, grouped into runs and colours.
 #[derive(Clone, Debug, Default)]
 pub struct PairTable {
     pairs: Parts<Pair>,
@@ -202,7 +202,8 @@ impl Fill<'_> {
             .windows(2)
             .map(|run| list.candidates().slice(run[0] as usize..run[1] as usize))
             .collect();
-        let kept = chunked::flat_map_ordered(&runs, &mut table.pairs, |run, out| {
+        let parallel = on_all_threads(list.candidates().len());
+        let kept = chunked::flat_map_ordered(&runs, &mut table.pairs, parallel, |run, out| {
             for &(i, j) in *run {
                 let d = q[i as usize] - q[j as usize];
                 out.extend(image(i, j, d).and_then(|g| pair(i, j, g)));

@@ -12,23 +12,32 @@
 //!
 //! The Verlet list fixes the order in which every pairwise sub-flow visits the pairs. Cells of
 //! edge at least `r_c + skin` own the pairs between themselves and 13 of their neighbours (a
-//! half stencil spanning offsets `[0, 1] x [-1, 1] x [-1, 1]`). Cells are coloured by
-//! `(cx mod m_x, cy mod m_y, cz mod m_z)`, with `m_x >= 2` and `m_y, m_z >= 3` dividing the cell
-//! counts (the smallest such up to 5; a count is rounded down by at most two cells to have
-//! one): two cells of one colour are at least two cells apart along x or three along y or z,
-//! so the pairs they own share no particle and can be processed concurrently. The order is:
-//! colours in order (`((cx mod m_x) m_y + cy mod m_y) m_z + cz mod m_z`), within a colour cells
-//! by ascending index, within a cell the pairs in scan order: particle by particle `a` of the
-//! cell in cell order, its pairs with the later particles `b > a` of the cell, then with the
-//! stencil: the cell above along z, then the rows `(dx, dy) = (0, 1), (1, -1), (1, 0),
-//! (1, 1)`, each row its cells `dz = -1, 0, 1` in storage order. (The cell and its stencil are
-//! copied once per cell and tested in vectorised blocks, see `stencil.rs`. Pairs that share a
-//! particle are in the same relative order as when all pairs within the cell come first and
-//! the stencil is then scanned range by range for all particles of the cell, so these orders
-//! give the same results.)
-//! Within a colour, cells commute, so this order gives the same result on any number of
-//! threads. Where the box is too small for the grid (fewer than 3 cells along some axis)
-//! there is one cell and one colour, and processing is sequential.
+//! half stencil spanning offsets `[0, 1] x [-1, 1] x [-1, 1]`). The cells are grouped into
+//! units that one thread sweeps in turn: a unit is a layer of cells `cx` (all `cy`, all `cz`),
+//! or, when a layer has at least 16 cells along y, a block of four to seven consecutive `cy`
+//! of a layer (an even number of blocks, all `cz`). A unit's cells are consecutive cell
+//! indices, so its particles are one range of memory. Units are coloured by
+//! `(cx mod m_x) m_y + b mod m_y`, `b` the block index, with `m_x` the smallest divisor from 2
+//! to 5 of the layer count (which is rounded down by at most two layers to have one) and
+//! `m_y = 2` (1 with whole layers). The half stencil reaches one layer along x and one cell to
+//! either side along y, so two units of one colour, at least two layers apart or separated by
+//! a block of at least two cells, touch disjoint particles and can be processed concurrently.
+//! The order is: colours in order, within a colour units by ascending `(cx, b)`, within a unit
+//! cells by ascending index, within a cell the pairs in scan order: particle by particle `a`
+//! of the cell in cell order, its pairs with the later particles `b > a` of the cell, then
+//! with the stencil: the cell above along z, then the rows `(dx, dy) = (0, 1), (1, -1),
+//! (1, 0), (1, 1)`, each row its cells `dz = -1, 0, 1` in storage order. (The cell and its
+//! stencil are copied once per cell and tested in vectorised blocks, see `stencil.rs`. Pairs
+//! that share a particle are in the same relative order as when all pairs within the cell come
+//! first and the stencil is then scanned range by range for all particles of the cell, so these
+//! orders give the same results.)
+//! Within a colour, units commute, so this order gives the same result on any number of
+//! threads. A sweep in units keeps the particles it touches close together: consecutive cells
+//! share most of their stencils, and a colour reads each particle at most about once, so a
+//! pass reads the particle arrays a few times (two to four colours) where a colouring of
+//! single cells (18 to 125 colours) read most of them once per colour.
+//! Where the box is too small for the grid (fewer than 3 cells along some axis) there is one
+//! cell and one colour, and processing is sequential.
 //!
 //! The order is a function of the positions at the last build; a checkpoint stores those
 //! positions so that a restarted run rebuilds the same list. The list is rebuilt when a particle
@@ -65,34 +74,56 @@ use stencil::{with_stencil, Columns};
 #[derive(Clone, Debug, Default)]
 pub struct CellGrid {
     dims: [usize; 3],
-    /// Colour moduli along each axis (see [`colourable`]); all 1 when not coloured.
-    moduli: [usize; 3],
+    /// Colour moduli of the layer index `cx` and of the y-block index (see the module docs);
+    /// all 1 when not coloured.
+    moduli: [usize; 2],
+    /// Blocks each layer is split into along y (1: a unit is a whole layer).
+    y_blocks: usize,
     coloured: bool,
     /// `cell_start[c]..cell_start[c + 1]`: cell-order indices of the particles of cell `c`.
     cell_start: Vec<u32>,
     /// `order[k]`: input index of the k-th particle in cell order.
     order: Vec<u32>,
-    /// Cells in sweep order (colour-major) and the number of cells of each colour; they depend
-    /// on `dims` only and are kept between builds.
+    /// Cells in sweep order (colour by colour, unit by unit); `units[u]..units[u + 1]` are the
+    /// positions in `sweep` of the cells of unit `u`, `colour_units[c]..colour_units[c + 1]`
+    /// the units of colour `c`. They depend on `dims` only and are kept between builds.
     sweep: Vec<u32>,
-    colour_cells: Vec<usize>,
+    units: Vec<u32>,
+    colour_units: Vec<u32>,
 }
 
 /// Chunks of particles counted and placed together by [`CellGrid::bin`].
 const BIN_CHUNKS: usize = 8;
 
-/// Cells along one axis of `n` that fit, and the colour modulus `m` for them: the largest count
-/// in `n - 2 ..= n` (at least 3) with a divisor `m` in `low ..= 5`, `m` the smallest such; else
-/// `n` with its smallest divisor from `low` on. Cells `k m` apart along the axis (cyclically)
-/// are then at least `m` cells apart: for `low = 2` (x, where the half stencil spans two cells)
-/// and `low = 3` (y and z, three cells) their stencils do not overlap along that axis.
-fn colourable(n: usize, low: usize) -> (usize, usize) {
+/// Below this many particles a sweep scans its units on one thread (at density 3 about
+/// 12 000 pairs, where the pair passes split too).
+const PARALLEL_MIN_PARTICLES: usize = 2048;
+
+/// Layers along x of `n` cells that fit, and the colour modulus `m` for them: the largest count
+/// in `n - 2 ..= n` (at least 3) with a divisor `m` in `2 ..= 5`, `m` the smallest such; else
+/// `n` with its smallest divisor from 2 on. Layers `k m` apart (cyclically) are then at least
+/// two layers apart, and the half stencil reaches one layer along x, so the layers of one
+/// colour touch disjoint particles.
+fn colourable(n: usize) -> (usize, usize) {
     for count in (n.saturating_sub(2).max(3)..=n).rev() {
-        if let Some(m) = (low..=5).find(|&m| count.is_multiple_of(m)) {
+        if let Some(m) = (2..=5).find(|&m| count.is_multiple_of(m)) {
             return (count, m);
         }
     }
-    (n, (low..=n).find(|&m| n.is_multiple_of(m)).unwrap_or(n))
+    (n, (2..=n).find(|&m| n.is_multiple_of(m)).unwrap_or(n))
+}
+
+/// Blocks a layer of `ny` cells is split into along y: an even number (two colours) of blocks
+/// of four to seven cells when that gives at least four, so that a colour has more units to
+/// share among threads; else 1 (whole layers). Two blocks of one colour are then separated by
+/// a block of at least two cells, more than the stencil's reach of one cell to either side.
+fn y_blocks(ny: usize) -> usize {
+    let blocks = 2 * (ny / 8);
+    if blocks >= 4 {
+        blocks
+    } else {
+        1
+    }
 }
 
 impl CellGrid {
@@ -116,18 +147,20 @@ impl CellGrid {
             }
         };
         let mut dims = [fit(0), fit(1), fit(2)];
-        let mut moduli = [1; 3];
         let coloured = !dims.contains(&1);
-        if coloured {
-            for (k, low) in [2, 3, 3].into_iter().enumerate() {
-                (dims[k], moduli[k]) = colourable(dims[k], low);
-            }
+        let (moduli, y_blocks) = if coloured {
+            let (nx, mx) = colourable(dims[0]);
+            dims[0] = nx;
+            let blocks = y_blocks(dims[1]);
+            ([mx, if blocks > 1 { 2 } else { 1 }], blocks)
         } else {
             dims = [1, 1, 1];
-        }
+            ([1, 1], 1)
+        };
         if dims != self.dims || moduli != self.moduli || self.sweep.is_empty() {
             self.dims = dims;
             self.moduli = moduli;
+            self.y_blocks = y_blocks;
             self.coloured = coloured;
             self.plan_sweep();
         }
@@ -193,16 +226,27 @@ impl CellGrid {
         &self.order
     }
 
-    /// Cells in sweep order for the current `dims`.
+    /// Cells, units and colours in sweep order for the current `dims` (see the module docs).
     fn plan_sweep(&mut self) {
-        let mut cells: Vec<u32> = (0..self.cells() as u32).collect();
-        cells.sort_by_key(|&c| self.colour(c as usize));
-        self.colour_cells = vec![0; self.colours()];
-        for &c in &cells {
-            let colour = self.colour(c as usize);
-            self.colour_cells[colour] += 1;
+        let [nx, ny, nz] = self.dims;
+        let [mx, my] = self.moduli;
+        let blocks = self.y_blocks;
+        let block_start = |b: usize| b * ny / blocks;
+        self.sweep.clear();
+        self.units = vec![0];
+        self.colour_units = vec![0];
+        for colour in 0..mx * my {
+            for cx in (colour / my..nx).step_by(mx) {
+                for b in (colour % my..blocks).step_by(my) {
+                    // A unit's cells are consecutive indices: one layer, rows of full z.
+                    let cells =
+                        (cx * ny + block_start(b)) * nz..(cx * ny + block_start(b + 1)) * nz;
+                    self.sweep.extend(cells.map(|c| c as u32));
+                    self.units.push(self.sweep.len() as u32);
+                }
+            }
+            self.colour_units.push(self.units.len() as u32 - 1);
         }
-        self.sweep = cells;
     }
 
     /// `q` permuted into the cell order of the last [`CellGrid::bin`].
@@ -225,11 +269,13 @@ impl CellGrid {
         self.moduli.iter().product()
     }
 
-    /// Colour of cell `c`, in `0..colours()`: `(cx mod m_x, cy mod m_y, cz mod m_z)`.
+    /// Colour of cell `c`, in `0..colours()`: `(cx mod m_x) m_y + (y-block of cy) mod m_y`.
     pub fn colour(&self, c: usize) -> usize {
-        let [mx, my, mz] = self.moduli;
-        let (cx, cy, cz) = self.coordinates(c);
-        ((cx % mx) * my + cy % my) * mz + cz % mz
+        let [mx, my] = self.moduli;
+        let (cx, cy, _) = self.coordinates(c);
+        // The block b with b ny / blocks <= cy < (b + 1) ny / blocks.
+        let block = ((cy + 1) * self.y_blocks - 1) / self.dims[1];
+        (cx % mx) * my + block % my
     }
 
     /// Call `f(a, b, d)` for every pair owned by cell `c` whose minimum-image separation
@@ -361,7 +407,7 @@ impl CellGrid {
     /// is called for each (cell-order indices into `pos`, `d` the minimum-image `q_a - q_b`)
     /// and may push any number of items into `out`. Cells are scanned on all threads and
     /// joined in order, so the result does not depend on the thread count. `items` is
-    /// refilled (its allocation reused); returns the grouping into cell runs and colours.
+    /// refilled (its allocation reused); returns the grouping into runs and colours.
     pub fn sweep<T: Send>(
         &self,
         pos: &[Vec3],
@@ -372,20 +418,27 @@ impl CellGrid {
         emit: impl Fn(u32, u32, Vec3, &mut Vec<T>) + Sync,
     ) -> Runs {
         let cols = Columns::new(pos);
-        let found = chunked::flat_map_ordered(&self.sweep, items, |&c, out| {
-            self.for_each_pair_of_cell(c as usize, &cols, bx, shear, cutoff, |a, b, d| {
-                emit(a, b, d, out)
-            })
+        let units: Vec<Range<usize>> = self
+            .units
+            .windows(2)
+            .map(|u| u[0] as usize..u[1] as usize)
+            .collect();
+        let parallel = pos.len() >= PARALLEL_MIN_PARTICLES;
+        let found = chunked::flat_map_ordered(&units, items, parallel, |unit, out| {
+            for &c in &self.sweep[unit.clone()] {
+                self.for_each_pair_of_cell(c as usize, &cols, bx, shear, cutoff, |a, b, d| {
+                    emit(a, b, d, out)
+                });
+            }
         });
         let mut groups = Runs {
             runs: vec![0],
             colours: vec![0],
             independent: if self.coloured { self.colours() } else { 0 },
         };
-        let mut found = found.into_iter();
         let mut end = 0;
-        for &count in &self.colour_cells {
-            for n in found.by_ref().take(count) {
+        for colour in self.colour_units.windows(2) {
+            for &n in &found[colour[0] as usize..colour[1] as usize] {
                 end += n;
                 if n > 0 {
                     groups.runs.push(end);
@@ -476,8 +529,9 @@ fn wrap_cell(c: usize, d: isize, n: usize, length: f64) -> (usize, f64) {
     }
 }
 
-/// Pairs grouped for the sweep order: `runs[k]..runs[k + 1]` is the k-th cell's run of
-/// pairs, `colours[c]..colours[c + 1]` the runs of colour `c`. The runs of each of the first
+/// Pairs grouped for the sweep order: `runs[k]..runs[k + 1]` is the k-th run of pairs (those
+/// of a unit of cells, or of a top-row cell across a sliding boundary),
+/// `colours[c]..colours[c + 1]` the runs of colour `c`. The runs of each of the first
 /// `independent` colours touch disjoint particles (0: none do); runs of a further colour (the
 /// pairs across a sliding Lees-Edwards boundary) never count as independent.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -618,7 +672,7 @@ impl VerletList {
         &self.candidates
     }
 
-    /// Grouping of [`VerletList::candidates`] into cell runs and colours.
+    /// Grouping of [`VerletList::candidates`] into runs and colours.
     pub fn groups(&self) -> &Runs {
         &self.groups
     }
@@ -689,18 +743,54 @@ mod tests {
     }
 
     #[test]
-    fn colourable_counts_lose_at_most_two_cells() {
-        assert_eq!(colourable(3, 2), (3, 3));
-        assert_eq!(colourable(5, 2), (5, 5));
-        assert_eq!(colourable(5, 3), (5, 5));
-        assert_eq!(colourable(7, 2), (6, 2));
-        assert_eq!(colourable(7, 3), (6, 3));
-        assert_eq!(colourable(20, 3), (20, 4));
-        assert_eq!(colourable(13, 3), (12, 3));
+    fn colourable_counts_lose_at_most_two_layers() {
+        assert_eq!(colourable(3), (3, 3));
+        assert_eq!(colourable(5), (5, 5));
+        assert_eq!(colourable(7), (6, 2));
+        assert_eq!(colourable(20), (20, 2));
+        assert_eq!(colourable(13), (12, 2));
         for n in 3..200 {
-            for low in [2, 3] {
-                let (count, m) = colourable(n, low);
-                assert!(count + 2 >= n && count <= n && count.is_multiple_of(m) && m >= low);
+            let (count, m) = colourable(n);
+            assert!(count + 2 >= n && count <= n && count.is_multiple_of(m) && m >= 2);
+        }
+    }
+
+    /// Blocks along y: none below 16 cells, else an even number of blocks of four to seven
+    /// cells; the units of the sweep are each cell exactly once, colour by colour.
+    #[test]
+    fn units_cover_every_cell_once() {
+        assert_eq!(y_blocks(15), 1);
+        for ny in 16..200 {
+            let b = y_blocks(ny);
+            assert!(b >= 4 && b.is_multiple_of(2), "{ny} cells: {b} blocks");
+            assert!(
+                (4..=7).contains(&(ny / b)) && ny.div_ceil(b) <= 7,
+                "{ny} cells: {b} blocks"
+            );
+        }
+        for lengths in [
+            [5.5, 5.5, 5.5],
+            [20.0, 20.0, 20.0],
+            [7.3, 17.2, 4.1],
+            [2.0, 9.0, 9.0],
+        ] {
+            let bx = PeriodicBox::new(lengths).unwrap();
+            let mut grid = CellGrid::default();
+            grid.bin(&uniform_positions(&bx, 100, 1), &bx, 1.0);
+            let mut cells = grid.sweep.clone();
+            cells.sort_unstable();
+            assert_eq!(
+                cells,
+                (0..grid.cells() as u32).collect::<Vec<_>>(),
+                "{lengths:?}"
+            );
+            for (c, colour) in grid.colour_units.windows(2).enumerate() {
+                let units = colour[0] as usize..colour[1] as usize;
+                let cells = grid.units[units.start] as usize..grid.units[units.end] as usize;
+                let wrong = grid.sweep[cells]
+                    .iter()
+                    .find(|&&k| grid.colour(k as usize) != c);
+                assert_eq!(wrong, None, "{lengths:?}: colour {c}");
             }
         }
     }
@@ -744,17 +834,19 @@ mod tests {
 
     #[test]
     fn verlet_list_matches_brute_force_and_colours_are_disjoint() {
-        // Box 5.3: 4 x 5 x 3 cells (moduli 2, 5, 3); 6.0: 4 x 6 x 4 (2, 3, 4).
+        // Cells of edge >= 1.3: box 5.3 has 4 x 5 x 3 (layer colours 2), 9.5 has 6 x 9 x 6 (7
+        // layers rounded down to 6), the last 5 x 17 x 4 (layer colours 5, four blocks along y).
         let boxes = [
-            (2.5, false),
-            (4.2, false),
-            (5.3, true),
-            (6.0, true),
-            (7.0, true),
-            (9.5, true),
+            ([2.5, 3.25, 2.25], false),
+            ([4.2, 5.46, 3.78], false),
+            ([5.3, 6.89, 4.77], true),
+            ([6.0, 7.8, 5.4], true),
+            ([7.0, 9.1, 6.3], true),
+            ([9.5, 12.35, 8.55], true),
+            ([7.0, 22.5, 5.5], true),
         ];
-        for (l, coloured) in boxes {
-            let bx = PeriodicBox::new([l, l * 1.3, l * 0.9]).unwrap();
+        for (lengths, coloured) in boxes {
+            let (bx, l) = (PeriodicBox::new(lengths).unwrap(), lengths[0]);
             let q = uniform_positions(&bx, 400, 1);
             let mut list = VerletList::new(0.3);
             let pos = build(&mut list, &q, &bx, None);
@@ -774,6 +866,7 @@ mod tests {
             ([5.3, 6.9, 4.8], true),
             ([7.0, 9.1, 6.3], true),
             ([9.5, 12.35, 8.55], true),
+            ([7.0, 22.5, 5.5], true),
         ];
         for (lengths, coloured) in boxes {
             let bx = PeriodicBox::new(lengths).unwrap();
