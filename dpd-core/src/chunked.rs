@@ -39,11 +39,6 @@ impl<U> Parts<U> {
         self.parts.iter().flatten()
     }
 
-    /// The parts, in order.
-    pub(crate) fn parts(&self) -> &[Vec<U>] {
-        &self.parts
-    }
-
     /// Items `range` of the sequence, which must lie within one part (a range produced by one
     /// work item always does).
     #[inline]

@@ -11,9 +11,10 @@
 //! - Shear ([`LeesEdwards`]): flow along x, gradient along y; a pair across the sliding
 //!   boundary carries the image's velocity shift in [`pairs::PairTable::shifts`].
 //! - Pairwise sweeps visit the interacting pairs in one documented order, colour by colour of
-//!   a cell colouring (see [`neighbour`]), or exactly that order reversed. The order does not
-//!   depend on the thread count; cells of one colour are processed in parallel.
+//!   a colouring of units of cells (see [`neighbour`]), or exactly that order reversed. The
+//!   order does not depend on the thread count; units of one colour are processed in parallel.
 
+mod avx2;
 pub mod boundary;
 pub mod checkpoint;
 pub mod chunked;

@@ -10,6 +10,7 @@ use crate::walls::FrozenWalls;
 use crate::{Tensor, Vec3};
 use dpd_ir::SweepOrder;
 use rayon::prelude::*;
+use std::cell::RefCell;
 use std::marker::PhantomData;
 use std::ops::Range;
 
@@ -67,8 +68,11 @@ pub struct PairTable {
     /// Whether the last fill was under shear or with walls (see [`PairTable::shifts`]).
     shifted: bool,
     groups: Runs,
-    /// The pairs' standard normals of the last noisy visit, in table order (scratch).
-    normals: Vec<f64>,
+}
+
+thread_local! {
+    /// The standard normals of the run a noisy visit is at, one buffer per thread.
+    static NORMALS: RefCell<Vec<f64>> = const { RefCell::new(Vec::new()) };
 }
 
 impl PairTable {
@@ -120,13 +124,13 @@ impl PairTable {
         self.shifted = shear.is_some() || walls.is_some();
         self.shifts.clear();
         match (shear, walls) {
-            (None, None) => fill.into(self, |_, _, d| Some(bx.min_image(d)), |_, _, d| Some(d)),
+            (None, None) => fill.into(self, |_, _, d| Some(bx.min_image(d)), None::<Separation>),
             // The scan's separation is the image, but the velocity shift needs the crossing
             // count: both come from the positions.
             (Some(le), _) => {
                 let image = |i: u32, j: u32| le.min_image(bx, q[i as usize] - q[j as usize]);
                 let from_positions = |i, j, _| Some(image(i, j).0);
-                fill.into(self, from_positions, from_positions);
+                fill.into(self, from_positions, Some(from_positions));
                 let shifts = self.pairs.iter().map(|p| image(p.i, p.j).1);
                 self.shifts.extend(shifts);
             }
@@ -134,7 +138,7 @@ impl PairTable {
                 let mobile = |i: u32, j: u32, d: Vec3| {
                     (!(w.frozen[i as usize] && w.frozen[j as usize])).then_some(d)
                 };
-                fill.into(self, |i, j, d| mobile(i, j, bx.min_image(d)), mobile);
+                fill.into(self, |i, j, d| mobile(i, j, bx.min_image(d)), Some(mobile));
                 let v = &w.velocity_x;
                 let shifts = self.pairs.iter().map(|p| v[p.i as usize] - v[p.j as usize]);
                 self.shifts.extend(shifts);
@@ -142,6 +146,10 @@ impl PairTable {
         }
     }
 }
+
+/// The separation of pair `(i, j)` to use, given the one a scan found, or `None` when the pair
+/// does not interact.
+type Separation = fn(u32, u32, Vec3) -> Option<Vec3>;
 
 /// What [`PairTable::collect`] fills from.
 struct Fill<'a> {
@@ -156,13 +164,14 @@ impl Fill<'_> {
     /// Fill `table`: from the candidates with `image(i, j, q_i - q_j)` giving the minimum
     /// image, or `None` for a pair that does not interact (two frozen particles); without skin
     /// from the grid's scan, with `scanned(i, j, d)` doing the same for the scan's
-    /// minimum-image separation `d`.
+    /// minimum-image separation `d`, or with the scan's hits as they are when `scanned` is
+    /// `None`.
     #[inline(always)]
     fn into(
         self,
         table: &mut PairTable,
         image: impl Fn(u32, u32, Vec3) -> Option<Vec3> + Sync,
-        scanned: impl Fn(u32, u32, Vec3) -> Option<Vec3> + Sync,
+        scanned: Option<impl Fn(u32, u32, Vec3) -> Option<Vec3> + Sync>,
     ) {
         let Fill {
             list,
@@ -174,26 +183,52 @@ impl Fill<'_> {
         let rc = params.rc();
         let rc2 = rc * rc;
         let inv_rc = 1.0 / rc;
+        // The pair of `(i, j)` at separation `d`, `r2 = |d|^2`, `r = sqrt(r2)`, `inv = 1 / r`.
+        let geometry = |i: u32, j: u32, d: Vec3, r: f64, inv: f64| {
+            let w = 1.0 - r * inv_rc;
+            Pair {
+                i,
+                j,
+                e: d * inv,
+                w,
+                wr: params.w_r(w),
+            }
+        };
+        let interacts = |r2: f64| r2 < rc2 && r2 > 0.0;
         let pair = |i: u32, j: u32, d: Vec3| -> Option<Pair> {
             let r2 = d.norm_squared();
-            (r2 < rc2 && r2 > 0.0).then(|| {
+            interacts(r2).then(|| {
                 let r = r2.sqrt();
-                let w = 1.0 - r * inv_rc;
-                Pair {
-                    i,
-                    j,
-                    e: d * (1.0 / r),
-                    w,
-                    wr: params.w_r(w),
-                }
+                geometry(i, j, d, r, 1.0 / r)
             })
         };
         if list.skin() == 0.0 {
-            table.groups = list
-                .grid()
-                .sweep(q, bx, shear, rc, &mut table.pairs, |i, j, d, out| {
-                    out.extend(scanned(i, j, d).and_then(|g| pair(i, j, g)))
-                });
+            let grid = list.grid();
+            table.groups = match &scanned {
+                None => grid.sweep(
+                    q,
+                    bx,
+                    shear,
+                    rc,
+                    &mut table.pairs,
+                    #[inline(always)]
+                    |h, out| {
+                        out.reserve(h.len());
+                        for k in 0..h.len() {
+                            if interacts(h.r2[k]) {
+                                let (j, d) = h.get(k);
+                                out.push(geometry(h.a(), j, d, h.r[k], h.inv_r[k]));
+                            }
+                        }
+                    },
+                ),
+                Some(scanned) => grid.sweep(q, bx, shear, rc, &mut table.pairs, |h, out| {
+                    for k in 0..h.len() {
+                        let (j, d) = h.get(k);
+                        out.extend(scanned(h.a(), j, d).and_then(|g| pair(h.a(), j, g)))
+                    }
+                }),
+            };
             return;
         }
         let from = list.groups();
@@ -239,84 +274,50 @@ impl PairTable {
         order: SweepOrder,
         visit: impl Fn(&Pair) -> T + Sync,
     ) -> T {
-        self.visit_with(order, None, |p, _, _| visit(p))
+        self.visit_sum_noisy(order, None, |p, _, _| visit(p))
     }
 
     /// [`PairTable::visit_sum`] handing each pair its standard normal of `noise` (0 with
-    /// `None`) and its velocity shift (0 without, see [`PairTable::shifts`]). The normals are
-    /// drawn first, for the whole table at once ([`crate::rng::pair_normals`]); they are the
-    /// numbers [`crate::rng::pair_normal`] gives.
+    /// `None`) and its velocity shift (0 without, see [`PairTable::shifts`]). The normals of a
+    /// run are drawn just before it is visited, while its pairs are in cache
+    /// ([`crate::rng::pair_normals`]); they are the numbers [`crate::rng::pair_normal`]
+    /// gives. `visit` is called from one place only, so that the compiler inlines it into the
+    /// loop over a run.
     pub(crate) fn visit_sum_noisy<T: Virial>(
-        &mut self,
+        &self,
         order: SweepOrder,
         noise: Option<Noise>,
         visit: impl Fn(&Pair, f64, f64) -> T + Sync,
     ) -> T {
-        let Some(noise) = noise else {
-            return self.visit_with(order, None, visit);
-        };
-        self.draw_normals(noise);
-        self.visit_with(order, Some(&self.normals), visit)
-    }
-
-    /// [`PairTable::visit_sum`] handing each pair its entry of `normals` (table order; 0 with
-    /// `None`) and its velocity shift ([`PairTable::shifts`], 0 without). `visit` is called
-    /// from one place only, so that the compiler inlines it into the loop over a run.
-    fn visit_with<T: Virial>(
-        &self,
-        order: SweepOrder,
-        normals: Option<&[f64]>,
-        visit: impl Fn(&Pair, f64, f64) -> T + Sync,
-    ) -> T {
         let shifts = self.shifts();
         self.visit_runs(order, |range, pairs| {
-            let n = pairs.len();
-            let z = normals.map(|z| &z[range.clone()][..n]);
-            let dvx = shifts.map(|s| &s[range][..n]);
-            let mut t = T::default();
-            for k in 0..n {
-                let k = match order {
-                    SweepOrder::Forward => k,
-                    SweepOrder::Reverse => n - 1 - k,
-                };
-                let (z, dvx) = (z.map_or(0.0, |z| z[k]), dvx.map_or(0.0, |s| s[k]));
-                t = t.add(visit(&pairs[k], z, dvx));
-            }
-            t
+            NORMALS.with_borrow_mut(|normals| {
+                let n = pairs.len();
+                let z = noise.map(|noise| {
+                    normals.resize(n, 0.0);
+                    let Noise {
+                        seed,
+                        step,
+                        stream,
+                        id,
+                    } = noise;
+                    let key = |k: usize| (id[pairs[k].i as usize], id[pairs[k].j as usize]);
+                    pair_normals(seed, step, stream, key, &mut normals[..n]);
+                    &normals[..n]
+                });
+                let dvx = shifts.map(|s| &s[range][..n]);
+                let mut t = T::default();
+                for k in 0..n {
+                    let k = match order {
+                        SweepOrder::Forward => k,
+                        SweepOrder::Reverse => n - 1 - k,
+                    };
+                    let (z, dvx) = (z.map_or(0.0, |z| z[k]), dvx.map_or(0.0, |s| s[k]));
+                    t = t.add(visit(&pairs[k], z, dvx));
+                }
+                t
+            })
         })
-    }
-
-    /// The standard normal of every pair under `noise` into `self.normals`, part by part of
-    /// the table (on all threads when it is large).
-    fn draw_normals(&mut self, noise: Noise) {
-        // Room for 3 % more pairs than now, as the table's parts keep; an excess is given back.
-        let n = self.pairs.len();
-        if self.normals.capacity() < n || self.normals.capacity() > n + n / 16 + 64 {
-            self.normals = Vec::with_capacity(n + n / 32);
-        }
-        self.normals.resize(n, 0.0);
-        let mut rest = &mut self.normals[..];
-        let mut jobs = Vec::with_capacity(self.pairs.parts().len());
-        for part in self.pairs.parts() {
-            let (out, tail) = rest.split_at_mut(part.len());
-            jobs.push((&part[..], out));
-            rest = tail;
-        }
-        let Noise {
-            seed,
-            step,
-            stream,
-            id,
-        } = noise;
-        let draw = |(part, out): (&[Pair], &mut [f64])| {
-            let key = |k: usize| (id[part[k].i as usize], id[part[k].j as usize]);
-            pair_normals(seed, step, stream, key, out)
-        };
-        if on_all_threads(self.pairs.len()) {
-            jobs.into_par_iter().for_each(draw);
-        } else {
-            jobs.into_iter().for_each(draw);
-        }
     }
 
     /// Fold every run of the table with `run(range, pairs)` (`pairs` the run's pairs, items

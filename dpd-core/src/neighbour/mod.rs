@@ -61,6 +61,7 @@
 
 mod stencil;
 
+use crate::avx2::with_avx2;
 use crate::boundary::{LeesEdwards, PeriodicBox};
 use crate::chunked::{self, Parts};
 use crate::pairs::Disjoint;
@@ -68,7 +69,8 @@ use crate::system::on_all_threads;
 use crate::Vec3;
 use rayon::prelude::*;
 use std::ops::Range;
-use stencil::{with_stencil, Columns};
+pub use stencil::Hits;
+use stencil::{with_stencil, Columns, Stencil};
 
 /// Particles binned into cells of edge at least `min_cell`, and the sweep over their pairs.
 #[derive(Clone, Debug, Default)]
@@ -278,22 +280,28 @@ impl CellGrid {
         (cx % mx) * my + block % my
     }
 
-    /// Call `f(a, b, d)` for every pair owned by cell `c` whose minimum-image separation
-    /// `d = q_a - q_b` is shorter than `cutoff` (`cutoff` at most the cell edge of the last bin), in scan order, except
-    /// the pairs that cross a sliding boundary (see
-    /// [`CellGrid::for_each_sliding_pair_of_cell`]). `a`, `b` and the positions `cols` are in
-    /// cell order.
+    /// Call `f(hits)` with the pairs owned by cell `c` whose minimum-image separation
+    /// `d = q_a - q_b` is shorter than `cutoff` (`cutoff` at most the cell edge of the last
+    /// bin), in scan order, except the pairs that cross a sliding boundary (see
+    /// [`CellGrid::for_each_sliding_pair_of_cell`]): one call per particle `a` and block of
+    /// its candidates. `a`, `b` and the positions of `scan` are in cell order; `stencil` is
+    /// scratch.
     ///
     /// Periodic images come from a per-row shift instead of a minimum-image test per pair.
+    #[inline(always)]
     fn for_each_pair_of_cell(
         &self,
         c: usize,
-        cols: &Columns,
-        bx: &PeriodicBox,
-        shear: Option<&LeesEdwards>,
-        cutoff: f64,
-        mut f: impl FnMut(u32, u32, Vec3),
+        stencil: &mut Stencil,
+        scan: &Scan,
+        mut f: impl FnMut(&Hits),
     ) {
+        let Scan {
+            ref cols,
+            bx,
+            shear,
+            cutoff,
+        } = *scan;
         let cut2 = cutoff * cutoff;
         let own = self.range(c);
         if self.dims == [1, 1, 1] {
@@ -305,7 +313,8 @@ impl CellGrid {
                 for b in a + 1..own.end {
                     let d = image(cols.position(a) - cols.position(b));
                     if d.norm_squared() < cut2 {
-                        f(a as u32, b as u32, d);
+                        stencil.hits.set_one(a as u32, b as u32, d);
+                        f(&stencil.hits);
                     }
                 }
             }
@@ -315,7 +324,8 @@ impl CellGrid {
         let [nx, ny, nz] = self.dims;
         let (cx, cy, cz) = self.coordinates(c);
         let l = bx.lengths();
-        with_stencil(|stencil| {
+        stencil.clear();
+        {
             // The own cell first, then the one above: one range unless that one wraps.
             if cz + 1 < nz {
                 let both = own.start..self.cell_start[c + 2] as usize;
@@ -345,7 +355,7 @@ impl CellGrid {
                 }
             }
             stencil.pairs(cols, own, cut2, &mut f);
-        });
+        }
     }
 
     /// Call `f(a, b, d)` for the pairs that cell `c` owns across a sliding Lees-Edwards
@@ -394,18 +404,27 @@ impl CellGrid {
         cutoff: f64,
         mut f: impl FnMut(u32, u32, Vec3),
     ) {
-        let cols = Columns::new(pos);
+        let scan = Scan::new(pos, bx, shear, cutoff);
         for c in 0..self.cells() {
-            self.for_each_pair_of_cell(c, &cols, bx, shear, cutoff, &mut f);
+            with_stencil(|stencil| {
+                let each = |h: &Hits| {
+                    for k in 0..h.len() {
+                        let (b, d) = h.get(k);
+                        f(h.a, b, d);
+                    }
+                };
+                self.for_each_pair_of_cell(c, stencil, &scan, each)
+            });
             if let Some(le) = shear {
                 self.for_each_sliding_pair_of_cell(c, pos, bx, le, cutoff, &mut f);
             }
         }
     }
 
-    /// All pairs within `cutoff` in the sweep order of the module docs: `emit(a, b, d, out)`
-    /// is called for each (cell-order indices into `pos`, `d` the minimum-image `q_a - q_b`)
-    /// and may push any number of items into `out`. Cells are scanned on all threads and
+    /// All pairs within `cutoff` in the sweep order of the module docs: `emit(hits, out)` is
+    /// called with them, a particle's hits among a block of candidates at a time (cell-order
+    /// indices into `pos`, separations the minimum-image `q_a - q_b`), and may push any number
+    /// of items into `out`. Cells are scanned on all threads and
     /// joined in order, so the result does not depend on the thread count. `items` is
     /// refilled (its allocation reused); returns the grouping into runs and colours.
     pub fn sweep<T: Send>(
@@ -415,9 +434,9 @@ impl CellGrid {
         shear: Option<&LeesEdwards>,
         cutoff: f64,
         items: &mut Parts<T>,
-        emit: impl Fn(u32, u32, Vec3, &mut Vec<T>) + Sync,
+        emit: impl Fn(&Hits, &mut Vec<T>) + Sync,
     ) -> Runs {
-        let cols = Columns::new(pos);
+        let scan = Scan::new(pos, bx, shear, cutoff);
         let units: Vec<Range<usize>> = self
             .units
             .windows(2)
@@ -425,11 +444,14 @@ impl CellGrid {
             .collect();
         let parallel = pos.len() >= PARALLEL_MIN_PARTICLES;
         let found = chunked::flat_map_ordered(&units, items, parallel, |unit, out| {
-            for &c in &self.sweep[unit.clone()] {
-                self.for_each_pair_of_cell(c as usize, &cols, bx, shear, cutoff, |a, b, d| {
-                    emit(a, b, d, out)
-                });
-            }
+            with_stencil(|stencil| {
+                with_avx2(|| {
+                    for &c in &self.sweep[unit.clone()] {
+                        let (c, emit) = (c as usize, |h: &Hits| emit(h, out));
+                        self.for_each_pair_of_cell(c, stencil, &scan, emit);
+                    }
+                })
+            })
         });
         let mut groups = Runs {
             runs: vec![0],
@@ -449,10 +471,12 @@ impl CellGrid {
         if let Some(le) = shear.filter(|le| le.offset() != 0.0) {
             let (base, runs) = (items.len(), &mut groups.runs);
             items.append(|part| {
+                let mut hits = Hits::default();
                 // Only top-row cells own such pairs; the others find none.
                 for c in 0..self.cells() {
                     self.for_each_sliding_pair_of_cell(c, pos, bx, le, cutoff, |a, b, d| {
-                        emit(a, b, d, part)
+                        hits.set_one(a, b, d);
+                        emit(&hits, part)
                     });
                     let end = (base + part.len()) as u32;
                     if end != *runs.last().unwrap_or(&0) {
@@ -476,6 +500,26 @@ impl CellGrid {
     fn coordinates(&self, c: usize) -> (usize, usize, usize) {
         let [_, ny, nz] = self.dims;
         (c / (ny * nz), (c / nz) % ny, c % nz)
+    }
+}
+
+/// What a scan of cells reads: the positions in cell order (as columns), the box and its
+/// sliding boundary, and the cutoff.
+struct Scan<'a> {
+    cols: Columns,
+    bx: &'a PeriodicBox,
+    shear: Option<&'a LeesEdwards>,
+    cutoff: f64,
+}
+
+impl<'a> Scan<'a> {
+    fn new(pos: &[Vec3], bx: &'a PeriodicBox, shear: Option<&'a LeesEdwards>, cutoff: f64) -> Self {
+        Scan {
+            cols: Columns::new(pos),
+            bx,
+            shear,
+            cutoff,
+        }
     }
 }
 
@@ -611,7 +655,9 @@ impl VerletList {
     /// order it returned. Candidate indices are indices into `q`.
     pub fn build(&mut self, q: &[Vec3], bx: &PeriodicBox, shear: Option<&LeesEdwards>, rc: f64) {
         if self.skin > 0.0 {
-            let push = |a, b, _, out: &mut Vec<(u32, u32)>| out.push((a, b));
+            let push = |h: &Hits, out: &mut Vec<(u32, u32)>| {
+                out.extend(h.b[..h.len()].iter().map(|&b| (h.a, b)))
+            };
             let reach = rc + self.skin;
             self.groups = self
                 .grid

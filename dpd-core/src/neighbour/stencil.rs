@@ -8,9 +8,8 @@
 //! in steps of a fixed width (one step for almost every range, so the copy loops hardly ever
 //! mispredict), and each particle of the cell is tested against the rest of its own cell and
 //! the whole stencil in blocks: a loop the compiler vectorises computes in/out flags, a
-//! branch-free loop gathers the hits, and only the hits reach the caller. On x86_64 CPUs with
-//! AVX2 (detected at run time) the tests are compiled with AVX2 enabled; both paths compute
-//! the same numbers (neither contracts multiply-adds).
+//! branch-free loop gathers the hits, and only the hits reach the caller. The sweep runs these
+//! loops in code compiled with AVX2 where the CPU has it (`crate::avx2`).
 
 use crate::system::on_all_threads;
 use crate::Vec3;
@@ -18,7 +17,7 @@ use rayon::prelude::*;
 use std::cell::RefCell;
 use std::ops::Range;
 
-/// Candidates tested per block.
+/// Candidates tested per block, and the most hits handed on at once.
 const BLOCK: usize = 64;
 
 /// Entries moved per step of [`Stencil::push`]: a row of three cells (about nine particles at
@@ -70,7 +69,8 @@ impl Columns {
 
 /// Candidates of one cell's stencil: position minus the periodic shift of its cell (so that
 /// `q_a - candidate` is the separation from particle `a` of the cell), and cell-order index.
-/// The first `len` entries of the arrays are in use; the arrays only grow.
+/// The first `len` entries of the arrays are in use; the arrays only grow. With them the
+/// scratch of the tests, kept here so that no cell pays for setting it up.
 #[derive(Default)]
 pub(super) struct Stencil {
     len: usize,
@@ -78,6 +78,24 @@ pub(super) struct Stencil {
     y: Vec<f64>,
     z: Vec<f64>,
     index: Vec<u32>,
+    block: Box<Block>,
+    pub(super) hits: Box<Hits>,
+}
+
+/// Which candidates of a block are hits.
+struct Block {
+    inside: [bool; BLOCK],
+    /// `at[s]`: the block position of hit `s`.
+    at: [u8; BLOCK],
+}
+
+impl Default for Block {
+    fn default() -> Self {
+        Block {
+            inside: [false; BLOCK],
+            at: [0; BLOCK],
+        }
+    }
 }
 
 thread_local! {
@@ -89,12 +107,18 @@ thread_local! {
 pub(super) fn with_stencil<R>(body: impl FnOnce(&mut Stencil) -> R) -> R {
     SCRATCH.with(|s| {
         let mut s = s.borrow_mut();
-        s.len = 0;
+        s.clear();
         body(&mut s)
     })
 }
 
 impl Stencil {
+    /// Forget the candidates (the arrays keep their room).
+    #[inline(always)]
+    pub(super) fn clear(&mut self) {
+        self.len = 0;
+    }
+
     /// Append the particles `range` (cell-order indices into `cols`), seen from a cell that
     /// must add `shift` to its positions to sit next to them.
     #[inline(always)]
@@ -128,84 +152,140 @@ impl Stencil {
         self.len = start + n;
     }
 
-    /// Call `f(a, b, d)` for every particle `a` of `own` (in order) and every candidate `b`
-    /// after `a` (in the order pushed) with `|d|^2 < cut2`, `d = q_a - (q_b - shift_b)`. The
-    /// first push must have been the particles `own` themselves, unshifted: each particle
-    /// meets the rest of its cell, then the other cells.
+    /// Call `f(hits)` for every particle `a` of `own` (in order) with its hits among the
+    /// candidates after it (in the order pushed): those with `r2 = |d|^2 < cut2`,
+    /// `d = q_a - (q_b - shift_b)`, at most `BLOCK` per call. The first push must have been
+    /// the particles `own` themselves, unshifted: each particle meets the rest of its cell,
+    /// then the other cells.
     #[inline(always)]
     pub(super) fn pairs(
-        &self,
+        &mut self,
         cols: &Columns,
         own: Range<usize>,
         cut2: f64,
-        f: &mut impl FnMut(u32, u32, Vec3),
-    ) {
-        #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the feature was detected.
-            return unsafe { self.pairs_avx2(cols, own, cut2, f) };
-        }
-        self.pairs_portable(cols, own, cut2, f)
-    }
-
-    /// [`Stencil::pairs_portable`] compiled with AVX2.
-    ///
-    /// # Safety
-    /// The CPU must support AVX2.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    unsafe fn pairs_avx2(
-        &self,
-        cols: &Columns,
-        own: Range<usize>,
-        cut2: f64,
-        f: &mut impl FnMut(u32, u32, Vec3),
-    ) {
-        self.pairs_portable(cols, own, cut2, f)
-    }
-
-    #[inline(always)]
-    fn pairs_portable(
-        &self,
-        cols: &Columns,
-        own: Range<usize>,
-        cut2: f64,
-        f: &mut impl FnMut(u32, u32, Vec3),
+        f: &mut impl FnMut(&Hits),
     ) {
         let m = self.len;
         debug_assert!(own
             .clone()
             .eq(self.index[..own.len()].iter().map(|&i| i as usize)));
-        // Written before they are read, block by block.
-        let (mut inside, mut hits) = ([false; BLOCK], [0u8; BLOCK]);
+        let (block, hits) = (&mut *self.block, &mut *self.hits);
         for (offset, a) in own.enumerate() {
             let qa = cols.position(a);
+            hits.a = a as u32;
             let mut start = offset + 1;
             while start < m {
                 let end = (start + BLOCK).min(m);
+                let len = end - start;
                 let (x, y, z) = (
                     &self.x[start..end],
                     &self.y[start..end],
                     &self.z[start..end],
                 );
+                let Block { inside, at } = block;
                 for (((inside, &x), &y), &z) in inside.iter_mut().zip(x).zip(y).zip(z) {
                     let (dx, dy, dz) = (qa.x - x, qa.y - y, qa.z - z);
                     *inside = dx * dx + dy * dy + dz * dz < cut2;
                 }
                 // Every slot is written, the count advances only on a hit: no branch.
                 let mut n = 0;
-                for (k, &inside) in inside[..end - start].iter().enumerate() {
+                for (k, &inside) in inside[..len].iter().enumerate() {
                     // n <= k < BLOCK, so the mask changes nothing; it spares a bounds check.
-                    hits[n & (BLOCK - 1)] = k as u8;
+                    at[n & (BLOCK - 1)] = k as u8;
                     n += inside as usize;
                 }
-                for &h in &hits[..n] {
-                    let k = start + h as usize;
-                    let d = Vec3::new(qa.x - self.x[k], qa.y - self.y[k], qa.z - self.z[k]);
-                    f(a as u32, self.index[k], d);
+                let index = &self.index[start..end];
+                for (slot, &k) in at[..n].iter().enumerate() {
+                    let k = k as usize;
+                    let (dx, dy, dz) = (qa.x - x[k], qa.y - y[k], qa.z - z[k]);
+                    hits.b[slot] = index[k];
+                    (hits.dx[slot], hits.dy[slot], hits.dz[slot]) = (dx, dy, dz);
+                    hits.r2[slot] = dx * dx + dy * dy + dz * dz;
+                }
+                hits.len = n;
+                if n > 0 {
+                    hits.set_distances();
+                    f(hits);
                 }
                 start = end;
             }
+        }
+    }
+}
+
+/// The hits of one particle `a` among a stretch of candidates, in candidate order: their
+/// cell-order indices `b`, the separations `d = q_a - q_b` (minimum image) by component,
+/// `r2 = |d|^2`, `r = sqrt(r2)` and `1 / r`, in arrays whose first [`Hits::len`] entries are
+/// set (at most 64). The square roots and divisions are computed for all hits at once, in
+/// vector registers.
+#[derive(Clone, Debug)]
+pub struct Hits {
+    pub(crate) a: u32,
+    len: usize,
+    pub(crate) b: [u32; BLOCK],
+    pub(crate) dx: [f64; BLOCK],
+    pub(crate) dy: [f64; BLOCK],
+    pub(crate) dz: [f64; BLOCK],
+    pub(crate) r2: [f64; BLOCK],
+    pub(crate) r: [f64; BLOCK],
+    pub(crate) inv_r: [f64; BLOCK],
+}
+
+impl Default for Hits {
+    fn default() -> Self {
+        Hits {
+            a: 0,
+            len: 0,
+            b: [0; BLOCK],
+            dx: [0.0; BLOCK],
+            dy: [0.0; BLOCK],
+            dz: [0.0; BLOCK],
+            r2: [0.0; BLOCK],
+            r: [0.0; BLOCK],
+            inv_r: [0.0; BLOCK],
+        }
+    }
+}
+
+impl Hits {
+    /// The most hits handed on at once.
+    pub const CAPACITY: usize = BLOCK;
+
+    /// The particle the hits are partners of.
+    pub fn a(&self) -> u32 {
+        self.a
+    }
+
+    /// Number of hits.
+    #[inline(always)]
+    #[allow(clippy::len_without_is_empty)]
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Partner `k` and its separation `q_a - q_b`.
+    #[inline(always)]
+    pub fn get(&self, k: usize) -> (u32, Vec3) {
+        (self.b[k], Vec3::new(self.dx[k], self.dy[k], self.dz[k]))
+    }
+
+    /// The single hit `(a, b)` at separation `d`.
+    #[inline(always)]
+    pub(super) fn set_one(&mut self, a: u32, b: u32, d: Vec3) {
+        (self.a, self.len, self.b[0]) = (a, 1, b);
+        (self.dx[0], self.dy[0], self.dz[0]) = (d.x, d.y, d.z);
+        self.r2[0] = d.x * d.x + d.y * d.y + d.z * d.z;
+        self.set_distances();
+    }
+
+    /// `r` and `1 / r` from `r2` (`1 / r` infinite for coincident particles).
+    #[inline(always)]
+    fn set_distances(&mut self) {
+        let n = self.len;
+        let (r, inv_r) = (&mut self.r[..n], &mut self.inv_r[..n]);
+        for ((r, inv_r), &r2) in r.iter_mut().zip(inv_r).zip(&self.r2[..n]) {
+            *r = r2.sqrt();
+            *inv_r = 1.0 / *r;
         }
     }
 }
@@ -302,13 +382,25 @@ mod tests {
                 stencil.push(&cols, own.clone(), Vec3::zeros());
                 stencil.push(&cols, own.end..middle, shift(own.end));
                 stencil.push(&cols, middle..pos.len(), shift(middle));
+                let collect = |got: &mut Vec<(u32, u32, Vec3)>, h: &Hits| {
+                    for k in 0..h.len() {
+                        let (b, d) = h.get(k);
+                        assert_eq!(h.r2[k], d.norm_squared());
+                        assert_eq!(h.r[k], d.norm());
+                        got.push((h.a(), b, d));
+                    }
+                };
                 let mut got = Vec::new();
-                stencil.pairs(&cols, own.clone(), cut2, &mut |a, b, d| got.push((a, b, d)));
+                stencil.pairs(&cols, own.clone(), cut2, &mut |h| collect(&mut got, h));
                 assert_eq!(got, want, "{candidates} candidates");
-                got.clear();
-                stencil
-                    .pairs_portable(&cols, own.clone(), cut2, &mut |a, b, d| got.push((a, b, d)));
-                assert_eq!(got, want, "{candidates} candidates, portable");
+                let mut avx2 = Vec::new();
+                crate::avx2::with_avx2(|| {
+                    stencil.pairs(&cols, own.clone(), cut2, &mut |h| collect(&mut avx2, h))
+                });
+                assert_eq!(
+                    avx2, want,
+                    "{candidates} candidates, in AVX2 code where available"
+                );
             });
         }
     }
