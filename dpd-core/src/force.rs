@@ -1,6 +1,6 @@
 //! Per-particle forces summed over the interacting pairs in sweep order.
 
-use crate::pairs::{Disjoint, Noise, PairTable, Virial};
+use crate::pairs::{Noise, PairTable, Virial};
 use crate::params::Params;
 use crate::system::System;
 use crate::{Tensor, Vec3};
@@ -12,14 +12,15 @@ use dpd_ir::SweepOrder;
 pub(crate) fn conservative(pairs: &PairTable, params: &Params, kind: &[u16], out: &mut Vec<Vec3>) {
     out.clear();
     out.resize(kind.len(), Vec3::zeros());
-    let out = Disjoint::new(out);
-    pairs.visit(SweepOrder::Forward, |pair| {
-        let (i, j) = (pair.i as usize, pair.j as usize);
-        let f = params.a(kind[i], kind[j]) * pair.w * pair.e;
-        // SAFETY: `visit` never hands two pairs sharing a particle to different threads.
+    let out = pairs.write(out);
+    let (kind, a) = (pairs.read(kind), params.repulsion());
+    pairs.visit(SweepOrder::Forward, move |pair| {
+        let f = a.of(kind.get(pair.i), kind.get(pair.j)) * pair.w * pair.e;
+        // SAFETY: `visit` never hands two pairs sharing a particle to different threads, and
+        // `out` was made for this table.
         unsafe {
-            *out.get(i) += f;
-            *out.get(j) -= f;
+            *out.get_paired(pair.i) += f;
+            *out.get_paired(pair.j) -= f;
         }
     });
 }
@@ -63,8 +64,9 @@ fn full_with<const SHIFTED: bool, V: Virial>(sys: &mut System, stream: u8) -> V 
     // Allocated on first use: a scheme without F holds no full-force array.
     full.clear();
     full.resize(p.len(), Vec3::zeros());
-    let full = Disjoint::new(full);
-    let gamma = params.gamma();
+    let full = pairs.write(full);
+    let (p, inv_mass, kind) = (pairs.read(p), pairs.read(inv_mass), pairs.read(kind));
+    let (a, rc, gamma) = (params.repulsion(), params.rc(), params.gamma());
     let noise = params.sigma() / dt.sqrt();
     let normals = (noise > 0.0).then_some(Noise {
         seed,
@@ -72,20 +74,25 @@ fn full_with<const SHIFTED: bool, V: Virial>(sys: &mut System, stream: u8) -> V 
         stream,
         id,
     });
-    pairs.visit_sum_noisy(SweepOrder::Forward, normals, |pair, z, dvx| {
-        let (i, j) = (pair.i as usize, pair.j as usize);
-        let u = pair.normal_velocity::<SHIFTED>(p[i] * inv_mass[i], p[j] * inv_mass[j], dvx);
-        let conservative = params.a(kind[i], kind[j]) * pair.w;
+    pairs.visit_sum_noisy(SweepOrder::Forward, normals, move |pair, z, dvx| {
+        let (i, j) = (pair.i, pair.j);
+        let u = pair.normal_velocity::<SHIFTED>(
+            p.get(i) * inv_mass.get(i),
+            p.get(j) * inv_mass.get(j),
+            dvx,
+        );
+        let conservative = a.of(kind.get(i), kind.get(j)) * pair.w;
         let mut f = conservative - gamma * pair.wr * pair.wr * u;
         if noise > 0.0 {
             f += noise * pair.wr * z;
         }
         let fe = f * pair.e;
-        // SAFETY: `visit` never hands two pairs sharing a particle to different threads.
+        // SAFETY: `visit` never hands two pairs sharing a particle to different threads, and
+        // `full` was made for this table.
         unsafe {
-            *full.get(i) += fe;
-            *full.get(j) -= fe;
+            *full.get_paired(i) += fe;
+            *full.get_paired(j) -= fe;
         }
-        V::of(pair, params.rc(), f - conservative)
+        V::of(pair, rc, f - conservative)
     })
 }

@@ -68,6 +68,9 @@ pub struct PairTable {
     /// Whether the last fill was under shear or with walls (see [`PairTable::shifts`]).
     shifted: bool,
     groups: Runs,
+    /// The particle count of the last fill: every pair's `i` and `j` are below it (the fill
+    /// takes them from cell ranges of, or bounds-checked lookups in, that many positions).
+    particles: usize,
 }
 
 thread_local! {
@@ -123,6 +126,7 @@ impl PairTable {
         };
         self.shifted = shear.is_some() || walls.is_some();
         self.shifts.clear();
+        self.particles = q.len();
         match (shear, walls) {
             (None, None) => fill.into(self, |_, _, d| Some(bx.min_image(d)), None::<Separation>),
             // The scan's separation is the image, but the velocity shift needs the crossing
@@ -290,19 +294,14 @@ impl PairTable {
         visit: impl Fn(&Pair, f64, f64) -> T + Sync,
     ) -> T {
         let shifts = self.shifts();
+        let noise = noise.map(|noise| (noise, self.read(noise.id)));
         self.visit_runs(order, |range, pairs| {
             NORMALS.with_borrow_mut(|normals| {
                 let n = pairs.len();
-                let z = noise.map(|noise| {
+                let z = noise.map(|(noise, id)| {
                     normals.resize(n, 0.0);
-                    let Noise {
-                        seed,
-                        step,
-                        stream,
-                        id,
-                    } = noise;
-                    let key = |k: usize| (id[pairs[k].i as usize], id[pairs[k].j as usize]);
-                    pair_normals(seed, step, stream, key, &mut normals[..n]);
+                    let key = |k: usize| (id.get(pairs[k].i), id.get(pairs[k].j));
+                    pair_normals(noise.seed, noise.step, noise.stream, key, &mut normals[..n]);
                     &normals[..n]
                 });
                 let dvx = shifts.map(|s| &s[range][..n]);
@@ -394,6 +393,47 @@ impl Virial for Tensor {
     }
 }
 
+impl PairTable {
+    /// `data`, one entry per particle, for reading by the pairs' indices without a bounds
+    /// check per pair. Panics unless it has an entry for every index of the table.
+    pub(crate) fn read<'a, T: Copy>(&self, data: &'a [T]) -> ByPair<'a, T> {
+        assert!(
+            data.len() >= self.particles,
+            "{} entries for a pair table of {} particles",
+            data.len(),
+            self.particles
+        );
+        ByPair(data)
+    }
+
+    /// [`Disjoint`] over `data`, for writing by the pairs' indices without a bounds check per
+    /// pair. Panics unless it has an entry for every index of the table.
+    pub(crate) fn write<'a, T>(&self, data: &'a mut [T]) -> Disjoint<'a, T> {
+        assert!(
+            data.len() >= self.particles,
+            "{} entries for a pair table of {} particles",
+            data.len(),
+            self.particles
+        );
+        Disjoint::new(data)
+    }
+}
+
+/// A per-particle slice with an entry for every index of a pair table ([`PairTable::read`]).
+#[derive(Clone, Copy)]
+pub(crate) struct ByPair<'a, T>(&'a [T]);
+
+impl<T: Copy> ByPair<'_, T> {
+    /// The entry of particle `i`, which must be an index of the table this was made for.
+    #[inline(always)]
+    pub(crate) fn get(self, i: u32) -> T {
+        debug_assert!((i as usize) < self.0.len());
+        // SAFETY: `i` is an index of the table, below its particle count (see
+        // `PairTable::particles`), and the slice has that many entries (checked in `read`).
+        unsafe { *self.0.get_unchecked(i as usize) }
+    }
+}
+
 /// A slice written concurrently at disjoint indices.
 ///
 /// Safety contract of [`Disjoint::get`]: no two threads access the same index at the same
@@ -424,5 +464,20 @@ impl<'a, T> Disjoint<'a, T> {
         assert!(i < self.len, "index {i} out of bounds ({})", self.len);
         // SAFETY: in bounds (checked above); exclusivity is the caller's contract.
         unsafe { &mut *self.ptr.add(i) }
+    }
+
+    /// [`Disjoint::get`] for `i` an index of the pair table this was made for
+    /// ([`PairTable::write`]), without the bounds check.
+    ///
+    /// # Safety
+    /// As for [`Disjoint::get`]; and `self` must come from [`PairTable::write`] of the table
+    /// whose pair holds `i`.
+    #[inline(always)]
+    #[allow(clippy::mut_from_ref)]
+    pub(crate) unsafe fn get_paired(&self, i: u32) -> &mut T {
+        debug_assert!((i as usize) < self.len);
+        // SAFETY: below the table's particle count, which `PairTable::write` checked against
+        // the length; exclusivity is the caller's contract.
+        unsafe { &mut *self.ptr.add(i as usize) }
     }
 }

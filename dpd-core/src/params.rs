@@ -142,7 +142,16 @@ impl Params {
     /// Repulsion between types `ti` and `tj`.
     #[inline(always)]
     pub fn a(&self, ti: u16, tj: u16) -> f64 {
-        self.a[ti as usize * self.types + tj as usize]
+        self.repulsion().of(ti, tj)
+    }
+
+    /// The repulsion matrix, as a value a pair loop keeps in registers.
+    #[inline(always)]
+    pub fn repulsion(&self) -> Repulsion<'_> {
+        Repulsion {
+            a: &self.a,
+            types: self.types,
+        }
     }
     pub fn types(&self) -> usize {
         self.types
@@ -175,6 +184,21 @@ impl Params {
         } else {
             w.powf(0.5 * self.s)
         }
+    }
+}
+
+/// The repulsion `a_ij` between particle types ([`Params::repulsion`]).
+#[derive(Clone, Copy, Debug)]
+pub struct Repulsion<'a> {
+    a: &'a [f64],
+    types: usize,
+}
+
+impl Repulsion<'_> {
+    /// Repulsion between types `ti` and `tj`.
+    #[inline(always)]
+    pub fn of(self, ti: u16, tj: u16) -> f64 {
+        self.a[ti as usize * self.types + tj as usize]
     }
 }
 

@@ -179,25 +179,29 @@ fn pair_normals_with(
     philox: impl Fn(&mut [[u32; LANES]; 4], [u32; 2]),
 ) {
     let head = PairRng::new(seed, step, stream, 0, 1);
+    // Words 2 and 3 of the counters (step, stream, block 0) are the same for every pair.
+    let mut ctr = [
+        [0; LANES],
+        [0; LANES],
+        [head.ctr[2]; LANES],
+        [head.ctr[3]; LANES],
+    ];
     for (b, block) in out.chunks_mut(LANES).enumerate() {
-        let mut ctr = [[0; LANES]; 4];
-        let keys: [(u32, u32); LANES] = std::array::from_fn(|l| {
-            if l < block.len() {
+        // Lane by lane over two arrays, the indexed form (as in `philox_lanes`).
+        #[allow(clippy::needless_range_loop)]
+        for l in 0..LANES {
+            let (i, j) = if l < block.len() {
                 pair(b * LANES + l)
             } else {
                 (0, 1)
-            }
-        });
-        for (l, &(i, j)) in keys.iter().enumerate() {
+            };
             (ctr[0][l], ctr[1][l]) = (i.min(j), i.max(j));
         }
-        ctr[2] = [head.ctr[2]; LANES];
-        ctr[3] = [head.ctr[3]; LANES];
-        philox(&mut ctr, head.key);
+        let mut first = ctr;
+        philox(&mut first, head.key);
         for (l, z) in block.iter_mut().enumerate() {
-            let (i, j) = keys[l];
-            let mut rng = PairRng::new(seed, step, stream, i, j);
-            rng.preload([0, 1, 2, 3].map(|w| ctr[w][l]));
+            let mut rng = head.of_ordered(ctr[0][l], ctr[1][l]);
+            rng.preload([0, 1, 2, 3].map(|w| first[w][l]));
             *z = rng.normal();
         }
     }
@@ -219,13 +223,24 @@ impl PairRng {
     /// The stream of pair `(i, j)` (either order) in `stream` of `step`, under `seed`.
     #[inline(always)]
     pub fn new(seed: u64, step: u64, stream: u8, i: u32, j: u32) -> Self {
-        let (lo, hi) = if i < j { (i, j) } else { (j, i) };
         let tag = (((step >> 32) as u32 & 0xFFFF) << 16) | ((stream as u32) << 8);
         PairRng {
-            ctr: [lo, hi, step as u32, tag],
+            ctr: [0, 0, step as u32, tag],
             key: [seed as u32, (seed >> 32) as u32],
             buf: [0; 2],
             used: 4,
+        }
+        .of_ordered(i.min(j), i.max(j))
+    }
+
+    /// The stream of pair `(lo, hi)`, `lo < hi`, in the same step, stream and seed, from its
+    /// first block.
+    #[inline(always)]
+    fn of_ordered(&self, lo: u32, hi: u32) -> Self {
+        PairRng {
+            ctr: [lo, hi, self.ctr[2], self.ctr[3] & !0xFF],
+            used: 4,
+            ..*self
         }
     }
 

@@ -1,11 +1,12 @@
 use super::expm1::expm1;
-use crate::pairs::{Disjoint, Noise, Pair, Virial};
+use crate::pairs::{Noise, Pair, Virial};
 use crate::system::System;
 use crate::Tensor;
 use dpd_ir::SweepOrder;
 
 /// What a pair update sees: inverse reduced mass `mu = 1/m_i + 1/m_j`, the pair, its
-/// repulsion `a_ij` and one standard normal `r`.
+/// repulsion `a_ij` (looked up only by a sweep that applies the conservative force, else 0)
+/// and one standard normal `r`.
 struct PairState<'a> {
     mu: f64,
     pair: &'a Pair,
@@ -88,32 +89,35 @@ fn sweep_with<const SHIFTED: bool, V: Virial>(
         stream,
         id,
     });
-    let p = Disjoint::new(p);
-    pairs.visit_sum_noisy(order, noise, |pair, r, dvx| {
-        let (i, j) = (pair.i as usize, pair.j as usize);
-        // SAFETY: `visit` never hands two pairs sharing a particle to different threads, and
-        // the two references below are to distinct particles (i != j).
-        let (pi, pj) = unsafe { (p.get(i), p.get(j)) };
-        let mu = inv_mass[i] + inv_mass[j];
+    let p = pairs.write(p);
+    let (inv_mass, kind) = (pairs.read(inv_mass), pairs.read(kind));
+    let (a, rc) = (params.repulsion(), params.rc());
+    pairs.visit_sum_noisy(order, noise, move |pair, r, dvx| {
+        let (i, j) = (pair.i, pair.j);
+        // SAFETY: `visit` never hands two pairs sharing a particle to different threads, `p`
+        // was made for this table, and the two references are to distinct particles (i != j).
+        let (pi, pj) = unsafe { (p.get_paired(i), p.get_paired(j)) };
+        let (mi, mj) = (inv_mass.get(i), inv_mass.get(j));
+        let mu = mi + mj;
         let state = PairState {
             mu,
             pair,
-            a: params.a(kind[i], kind[j]),
+            a: if conservative_h != 0.0 {
+                a.of(kind.get(i), kind.get(j))
+            } else {
+                0.0
+            },
             r,
         };
         let (slope, offset) = update(&state);
         let reduced = 1.0 / mu;
         let (slope, offset) = (slope * reduced, offset * reduced);
-        let u = pair.normal_velocity::<SHIFTED>(*pi * inv_mass[i], *pj * inv_mass[j], dvx);
+        let u = pair.normal_velocity::<SHIFTED>(*pi * mi, *pj * mj, dvx);
         let impulse = slope * u + offset;
         let dp = impulse * pair.e;
         *pi += dp;
         *pj -= dp;
-        V::of(
-            pair,
-            params.rc(),
-            impulse - state.a * pair.w * conservative_h,
-        )
+        V::of(pair, rc, impulse - state.a * pair.w * conservative_h)
     })
 }
 

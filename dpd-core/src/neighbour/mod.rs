@@ -436,6 +436,12 @@ impl CellGrid {
         items: &mut Parts<T>,
         emit: impl Fn(&Hits, &mut Vec<T>) + Sync,
     ) -> Runs {
+        // Every index handed on lies in a cell range of the last bin, so below pos.len().
+        assert_eq!(
+            pos.len(),
+            self.order.len(),
+            "positions are not those of the last bin"
+        );
         let scan = Scan::new(pos, bx, shear, cutoff);
         let units: Vec<Range<usize>> = self
             .units
