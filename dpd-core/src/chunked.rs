@@ -64,24 +64,36 @@ impl<U> Parts<U> {
 }
 
 /// Apply `f` to every item, each appending its outputs to a buffer; refill `out` with all
-/// outputs in item order and return the number each item produced. When `parallel` and the
-/// pool has more than one thread, the items are split into up to 64 chunks of consecutive
-/// items, filled on all threads; the result does not depend on the thread count, since the
-/// parts are read in order.
+/// outputs in item order and return the number each item produced. `groups` splits the items
+/// into consecutive groups, `groups[g]..groups[g + 1]` (from 0 to `items.len()`): a group's
+/// items are processed after every item of the groups before it. When `parallel` and the pool
+/// has more than one thread, each of the first `split` groups is split into up to 32 chunks of
+/// consecutive items, filled on all threads (the rest are filled in order on one thread); the
+/// result does not depend on the thread count, since the parts are read in order.
 pub(crate) fn flat_map_ordered<T: Sync, U: Send>(
     items: &[T],
+    groups: &[u32],
+    split: usize,
     out: &mut Parts<U>,
     parallel: bool,
     f: impl Fn(&T, &mut Vec<U>) + Sync,
 ) -> Vec<u32> {
-    let chunk = if parallel && rayon::current_num_threads() > 1 {
-        items.len().div_ceil(64).max(1)
-    } else {
-        items.len().max(1)
-    };
-    let chunks = items.len().div_ceil(chunk);
-    out.parts.resize_with(chunks, Vec::new);
-    out.parts.truncate(chunks);
+    debug_assert!(groups.first() == Some(&0) && groups.last() == Some(&(items.len() as u32)));
+    let threads = parallel && rayon::current_num_threads() > 1;
+    // Chunks as item ranges, group by group, and where each group's chunks start.
+    let (mut chunks, mut group_chunks) = (Vec::new(), vec![0]);
+    for (k, g) in groups.windows(2).enumerate() {
+        let (start, end) = (g[0] as usize, g[1] as usize);
+        let len = if threads && k < split {
+            (end - start).div_ceil(32).max(1)
+        } else {
+            (end - start).max(1)
+        };
+        chunks.extend((start..end).step_by(len).map(|k| k..(k + len).min(end)));
+        group_chunks.push(chunks.len());
+    }
+    out.parts.resize_with(chunks.len(), Vec::new);
+    out.parts.truncate(chunks.len());
     let run = |(chunk, part): (&[T], &mut Vec<U>)| {
         // Room for the previous fill and 3 % more, so that a part seldom grows.
         let previous = part.len();
@@ -102,19 +114,20 @@ pub(crate) fn flat_map_ordered<T: Sync, U: Send>(
         }
         lens
     };
-    let lens: Vec<Vec<u32>> = if chunks > 1 {
-        items
-            .par_chunks(chunk)
-            .zip(out.parts.par_iter_mut())
-            .map(run)
-            .collect()
-    } else {
-        items
-            .chunks(chunk)
-            .zip(out.parts.iter_mut())
-            .map(run)
-            .collect()
-    };
+    let mut lens: Vec<Vec<u32>> = Vec::with_capacity(chunks.len());
+    let mut parts = &mut out.parts[..];
+    for g in group_chunks.windows(2) {
+        let (ranges, rest) = (&chunks[g[0]..g[1]], std::mem::take(&mut parts));
+        let (mine, rest) = rest.split_at_mut(ranges.len());
+        parts = rest;
+        let jobs = ranges.iter().map(|r| &items[r.clone()]);
+        if ranges.len() > 1 {
+            let jobs: Vec<&[T]> = jobs.collect();
+            lens.par_extend(jobs.into_par_iter().zip(mine.par_iter_mut()).map(run));
+        } else {
+            lens.extend(jobs.zip(mine.iter_mut()).map(run));
+        }
+    }
     out.starts.clear();
     out.starts.push(0);
     let mut total = 0;
@@ -132,6 +145,7 @@ mod tests {
     #[test]
     fn same_result_on_any_thread_count() {
         let items: Vec<u32> = (0..1000).collect();
+        let groups = [0, 1, 400, 401, 1000];
         let f = |&k: &u32, out: &mut Vec<u32>| out.extend((0..k % 7).map(|x| x * k));
         let one = rayon::ThreadPoolBuilder::new()
             .num_threads(1)
@@ -142,10 +156,10 @@ mod tests {
             .build()
             .unwrap();
         let (mut out_a, mut out_b) = (Parts::default(), Parts::default());
-        let a = one.install(|| flat_map_ordered(&items, &mut out_a, true, f));
+        let a = one.install(|| flat_map_ordered(&items, &groups, 3, &mut out_a, true, f));
         // A second fill reuses the parts.
-        three.install(|| flat_map_ordered(&items[..10], &mut out_b, true, f));
-        let b = three.install(|| flat_map_ordered(&items, &mut out_b, true, f));
+        three.install(|| flat_map_ordered(&items[..10], &[0, 3, 10], 2, &mut out_b, true, f));
+        let b = three.install(|| flat_map_ordered(&items, &groups, 3, &mut out_b, true, f));
         assert_eq!(a, b);
         let (all_a, all_b): (Vec<u32>, Vec<u32>) = (
             out_a.iter().copied().collect(),

@@ -1,7 +1,10 @@
 //! Per-particle forces summed over the interacting pairs in sweep order.
 
-use crate::pairs::{Noise, PairTable, Virial};
+use crate::boundary::PeriodicBox;
+use crate::neighbour::VerletList;
+use crate::pairs::{visit_run, Bound, ByPair, Disjoint, Noise, Pair, PairTable, Virial};
 use crate::params::Params;
+use crate::params::Repulsion;
 use crate::system::System;
 use crate::{Tensor, Vec3};
 use dpd_ir::SweepOrder;
@@ -10,19 +13,53 @@ use dpd_ir::SweepOrder;
 /// `out` is resized to one entry per particle (it is allocated on first use, so a scheme that
 /// never kicks with B holds no conservative-force array).
 pub(crate) fn conservative(pairs: &PairTable, params: &Params, kind: &[u16], out: &mut Vec<Vec3>) {
+    let add = Conservative::new(pairs.bound(), params, kind, zeroed(out, kind.len()));
+    pairs.visit(SweepOrder::Forward, |pair| add.pair(pair));
+}
+
+/// `out` as `n` zero vectors.
+pub(crate) fn zeroed(out: &mut Vec<Vec3>, n: usize) -> &mut [Vec3] {
     out.clear();
-    out.resize(kind.len(), Vec3::zeros());
-    let out = pairs.write(out);
-    let (kind, a) = (pairs.read(kind), params.repulsion());
-    pairs.visit(SweepOrder::Forward, move |pair| {
-        let f = a.of(kind.get(pair.i), kind.get(pair.j)) * pair.w * pair.e;
-        // SAFETY: `visit` never hands two pairs sharing a particle to different threads, and
-        // `out` was made for this table.
-        unsafe {
-            *out.get_paired(pair.i) += f;
-            *out.get_paired(pair.j) -= f;
+    out.resize(n, Vec3::zeros());
+    out
+}
+
+/// The sum of the conservative forces into per-particle totals, pair by pair: what
+/// [`conservative`] does over a table, and what a fill does run by run
+/// ([`PairTable::collect_then`]), so that both give the same numbers.
+pub(crate) struct Conservative<'a> {
+    out: Disjoint<'a, Vec3>,
+    kind: ByPair<'a, u16>,
+    a: Repulsion<'a>,
+}
+
+impl<'a> Conservative<'a> {
+    /// Totals into `out` (zeroed) for the pairs of a table with index bound `bound`.
+    pub(crate) fn new(
+        bound: Bound,
+        params: &'a Params,
+        kind: &'a [u16],
+        out: &'a mut [Vec3],
+    ) -> Self {
+        Conservative {
+            out: bound.write(out),
+            kind: bound.read(kind),
+            a: params.repulsion(),
         }
-    });
+    }
+
+    /// Add the force of `pair`: `f = a_ij w e` to particle i, `-f` to j. Concurrent calls must
+    /// be for pairs of disjoint particles (as [`PairTable::visit`] hands them on).
+    #[inline(always)]
+    pub(crate) fn pair(&self, pair: &Pair) {
+        let f = self.a.of(self.kind.get(pair.i), self.kind.get(pair.j)) * pair.w * pair.e;
+        // SAFETY: no other thread is at a pair of i or j (the caller's contract), and `out`
+        // was made for the table's bound.
+        unsafe {
+            *self.out.get_paired(pair.i) += f;
+            *self.out.get_paired(pair.j) -= f;
+        }
+    }
 }
 
 /// Full DPD force at the current momenta into `sys.full`:
@@ -48,51 +85,193 @@ pub(crate) fn full(sys: &mut System, stream: u8) {
 
 #[inline(always)]
 fn full_with<const SHIFTED: bool, V: Virial>(sys: &mut System, stream: u8) -> V {
-    let System {
-        ref mut pairs,
-        ref p,
-        ref inv_mass,
-        ref kind,
-        ref id,
-        ref params,
-        ref mut full,
-        seed,
-        step,
-        dt,
-        ..
-    } = *sys;
-    // Allocated on first use: a scheme without F holds no full-force array.
-    full.clear();
-    full.resize(p.len(), Vec3::zeros());
-    let full = pairs.write(full);
-    let (p, inv_mass, kind) = (pairs.read(p), pairs.read(inv_mass), pairs.read(kind));
-    let (a, rc, gamma) = (params.repulsion(), params.rc(), params.gamma());
-    let noise = params.sigma() / dt.sqrt();
-    let normals = (noise > 0.0).then_some(Noise {
-        seed,
-        step,
-        stream,
-        id,
-    });
-    pairs.visit_sum_noisy(SweepOrder::Forward, normals, move |pair, z, dvx| {
+    let s = Split::of(sys, false, stream);
+    let add = &s.add;
+    s.pairs
+        .visit_sum_noisy(SweepOrder::Forward, s.noise, |pair, z, dvx| {
+            add.pair::<SHIFTED, V>(pair, z, dvx)
+        })
+}
+
+/// [`full`] while the pair table is filled ([`PairTable::collect_then`]): each run's normals
+/// and forces while it is in cache, in the order of a pass over the table, so the same
+/// numbers. For a periodic box without walls, not recording impulses, with the list built for
+/// the current positions; leaves the table filled.
+pub(crate) fn full_while_filling(sys: &mut System, stream: u8) {
+    let s = Split::of(sys, true, stream);
+    let noise = s.noise.map(|noise| noise.of(Bound::of(s.q)));
+    let forces = |pair: &Pair, z, _| s.add.pair::<false, ()>(pair, z, 0.0);
+    let each = |run: &[Pair]| visit_run(run, None, SweepOrder::Forward, noise, &forces);
+    s.pairs.collect_then(s.list, s.q, s.bx, s.params, each);
+}
+
+/// A system taken apart for a full-force evaluation: its pair table and what fills it, the
+/// force totals and the noise.
+struct Split<'a> {
+    pairs: &'a mut PairTable,
+    list: &'a VerletList,
+    q: &'a [Vec3],
+    bx: &'a PeriodicBox,
+    params: &'a Params,
+    add: Full<'a>,
+    noise: Option<Noise<'a>>,
+}
+
+impl<'a> Split<'a> {
+    /// `sys` apart, with the totals indexed by the bound of the table as it is, or, when
+    /// `refill`, as a fill from the current positions will make it.
+    fn of(sys: &'a mut System, refill: bool, stream: u8) -> Self {
+        let System {
+            ref mut pairs,
+            ref list,
+            ref q,
+            ref bx,
+            ref p,
+            ref inv_mass,
+            ref kind,
+            ref id,
+            ref params,
+            ref mut full,
+            seed,
+            step,
+            dt,
+            ..
+        } = *sys;
+        let bound = if refill { Bound::of(q) } else { pairs.bound() };
+        let add = Full::new(bound, params, dt, (p, inv_mass, kind), full);
+        let noise = add.noise(seed, step, stream, id);
+        Split {
+            pairs,
+            list,
+            q,
+            bx,
+            params,
+            add,
+            noise,
+        }
+    }
+}
+
+/// The sum of the full DPD forces into per-particle totals, pair by pair: what [`full`] does
+/// over a table, and what a fill does run by run ([`PairTable::collect_then`]), so that both
+/// give the same numbers.
+pub(crate) struct Full<'a> {
+    out: Disjoint<'a, Vec3>,
+    p: ByPair<'a, Vec3>,
+    inv_mass: ByPair<'a, f64>,
+    kind: ByPair<'a, u16>,
+    a: Repulsion<'a>,
+    rc: f64,
+    gamma: f64,
+    /// `sigma / sqrt(dt)`.
+    noise: f64,
+}
+
+impl<'a> Full<'a> {
+    /// Totals into `out` (allocated on first use, zeroed) for the pairs of a table with index
+    /// bound `bound`, at momenta `p` (with `inv_mass` and `kind` the particles' inverse masses
+    /// and types) and time step `dt` (which scales the random force).
+    pub(crate) fn new(
+        bound: Bound,
+        params: &'a Params,
+        dt: f64,
+        (p, inv_mass, kind): (&'a [Vec3], &'a [f64], &'a [u16]),
+        out: &'a mut Vec<Vec3>,
+    ) -> Self {
+        Full {
+            out: bound.write(zeroed(out, p.len())),
+            p: bound.read(p),
+            inv_mass: bound.read(inv_mass),
+            kind: bound.read(kind),
+            a: params.repulsion(),
+            rc: params.rc(),
+            gamma: params.gamma(),
+            noise: params.sigma() / dt.sqrt(),
+        }
+    }
+
+    /// The noise these forces need: stream `stream` of `step` under `seed`, pairs keyed by
+    /// `id`; `None` without noise.
+    pub(crate) fn noise<'b>(
+        &self,
+        seed: u64,
+        step: u64,
+        stream: u8,
+        id: &'b [u32],
+    ) -> Option<Noise<'b>> {
+        (self.noise > 0.0).then_some(Noise {
+            seed,
+            step,
+            stream,
+            id,
+        })
+    }
+
+    /// Add the force of `pair` with standard normal `z` and velocity shift `dvx` (used only
+    /// when `SHIFTED`), and return its dissipative and random part as `V`. Concurrent calls
+    /// must be for pairs of disjoint particles (as [`PairTable::visit`] hands them on).
+    #[inline(always)]
+    pub(crate) fn pair<const SHIFTED: bool, V: Virial>(&self, pair: &Pair, z: f64, dvx: f64) -> V {
         let (i, j) = (pair.i, pair.j);
         let u = pair.normal_velocity::<SHIFTED>(
-            p.get(i) * inv_mass.get(i),
-            p.get(j) * inv_mass.get(j),
+            self.p.get(i) * self.inv_mass.get(i),
+            self.p.get(j) * self.inv_mass.get(j),
             dvx,
         );
-        let conservative = a.of(kind.get(i), kind.get(j)) * pair.w;
-        let mut f = conservative - gamma * pair.wr * pair.wr * u;
-        if noise > 0.0 {
-            f += noise * pair.wr * z;
+        let conservative = self.a.of(self.kind.get(i), self.kind.get(j)) * pair.w;
+        let mut f = conservative - self.gamma * pair.wr * pair.wr * u;
+        if self.noise > 0.0 {
+            f += self.noise * pair.wr * z;
         }
         let fe = f * pair.e;
-        // SAFETY: `visit` never hands two pairs sharing a particle to different threads, and
-        // `full` was made for this table.
+        // SAFETY: no other thread is at a pair of i or j (the caller's contract), and `out`
+        // was made for the table's bound.
         unsafe {
-            *full.get_paired(i) += fe;
-            *full.get_paired(j) -= fe;
+            *self.out.get_paired(i) += fe;
+            *self.out.get_paired(j) -= fe;
         }
-        V::of(pair, rc, f - conservative)
-    })
+        V::of(pair, self.rc, f - conservative)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::init::equilibrium_box;
+    use crate::reference::VelocityVerlet;
+
+    /// Forces summed run by run while the table is filled are bit for bit those of a pass
+    /// over the filled table, on one thread and on several (20 000 particles: above the size
+    /// where scans and pair passes split).
+    #[test]
+    fn forces_summed_while_filling_equal_a_pass_over_the_table() {
+        for threads in [1, 3] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| {
+                let params = Params::builder().build().unwrap();
+                let mut sys = equilibrium_box(params, 20_000, 3.0, 7)
+                    .unwrap()
+                    .dt(0.04)
+                    .skin(0.0)
+                    .build()
+                    .unwrap();
+                sys.advance(&VelocityVerlet, 3).unwrap();
+                sys.positions_changed();
+                sys.ensure_conservative();
+                let filled_c = sys.conservative.clone();
+                sys.positions_changed();
+                sys.ensure_full(1);
+                let filled_f = sys.full.clone();
+                let mut pass = Vec::new();
+                conservative(&sys.pairs, &sys.params, &sys.kind, &mut pass);
+                assert_eq!(pass, filled_c, "conservative, {threads} threads");
+                full(&mut sys, 1);
+                assert_eq!(sys.full, filled_f, "full, {threads} threads");
+                assert!(filled_f.iter().any(|f| f.norm() > 0.0));
+            });
+        }
+    }
 }

@@ -3,7 +3,7 @@
 
 use crate::boundary::{LeesEdwards, PeriodicBox};
 use crate::chunked::{self, Parts};
-use crate::neighbour::{Runs, VerletList};
+use crate::neighbour::{Hits, Runs, VerletList};
 use crate::params::Params;
 use crate::rng::pair_normals;
 use crate::walls::FrozenWalls;
@@ -128,13 +128,16 @@ impl PairTable {
         self.shifts.clear();
         self.particles = q.len();
         match (shear, walls) {
-            (None, None) => fill.into(self, |_, _, d| Some(bx.min_image(d)), None::<Separation>),
+            (None, None) => {
+                let image = |_, _, d| Some(bx.min_image(d));
+                fill.into(self, image, None::<Separation>, |_: &[Pair]| {})
+            }
             // The scan's separation is the image, but the velocity shift needs the crossing
             // count: both come from the positions.
             (Some(le), _) => {
                 let image = |i: u32, j: u32| le.min_image(bx, q[i as usize] - q[j as usize]);
                 let from_positions = |i, j, _| Some(image(i, j).0);
-                fill.into(self, from_positions, Some(from_positions));
+                fill.into(self, from_positions, Some(from_positions), |_: &[Pair]| {});
                 let shifts = self.pairs.iter().map(|p| image(p.i, p.j).1);
                 self.shifts.extend(shifts);
             }
@@ -142,12 +145,40 @@ impl PairTable {
                 let mobile = |i: u32, j: u32, d: Vec3| {
                     (!(w.frozen[i as usize] && w.frozen[j as usize])).then_some(d)
                 };
-                fill.into(self, |i, j, d| mobile(i, j, bx.min_image(d)), Some(mobile));
+                let image = |i, j, d| mobile(i, j, bx.min_image(d));
+                fill.into(self, image, Some(mobile), |_: &[Pair]| {});
                 let v = &w.velocity_x;
                 let shifts = self.pairs.iter().map(|p| v[p.i as usize] - v[p.j as usize]);
                 self.shifts.extend(shifts);
             }
         }
+    }
+
+    /// [`PairTable::collect`] in a periodic box without walls, calling `after(run)` for every
+    /// run of the new table as soon as it is filled, while its pairs are in cache: on the
+    /// thread that filled it, colour by colour, so that `after` may update the particles of
+    /// the run's pairs as [`PairTable::visit`] would, in the same order. The table's indices
+    /// are below `Bound::of(q)`.
+    pub(crate) fn collect_then(
+        &mut self,
+        list: &VerletList,
+        q: &[Vec3],
+        bx: &PeriodicBox,
+        params: &Params,
+        after: impl Fn(&[Pair]) + Sync,
+    ) {
+        let fill = Fill {
+            list,
+            q,
+            bx,
+            shear: None,
+            params,
+        };
+        self.shifted = false;
+        self.shifts.clear();
+        self.particles = q.len();
+        let image = |_, _, d| Some(bx.min_image(d));
+        fill.into(self, image, None::<Separation>, after);
     }
 }
 
@@ -169,13 +200,15 @@ impl Fill<'_> {
     /// image, or `None` for a pair that does not interact (two frozen particles); without skin
     /// from the grid's scan, with `scanned(i, j, d)` doing the same for the scan's
     /// minimum-image separation `d`, or with the scan's hits as they are when `scanned` is
-    /// `None`.
+    /// `None`. `after(run)` is called with every run once it is filled, colour by colour, the
+    /// runs of one colour on the threads that filled them.
     #[inline(always)]
     fn into(
         self,
         table: &mut PairTable,
         image: impl Fn(u32, u32, Vec3) -> Option<Vec3> + Sync,
         scanned: Option<impl Fn(u32, u32, Vec3) -> Option<Vec3> + Sync>,
+        after: impl Fn(&[Pair]) + Sync,
     ) {
         let Fill {
             list,
@@ -225,13 +258,17 @@ impl Fill<'_> {
                             }
                         }
                     },
+                    after,
                 ),
-                Some(scanned) => grid.sweep(q, bx, shear, rc, &mut table.pairs, |h, out| {
-                    for k in 0..h.len() {
-                        let (j, d) = h.get(k);
-                        out.extend(scanned(h.a(), j, d).and_then(|g| pair(h.a(), j, g)))
-                    }
-                }),
+                Some(scanned) => {
+                    let emit = |h: &Hits, out: &mut Vec<Pair>| {
+                        for k in 0..h.len() {
+                            let (j, d) = h.get(k);
+                            out.extend(scanned(h.a(), j, d).and_then(|g| pair(h.a(), j, g)))
+                        }
+                    };
+                    grid.sweep(q, bx, shear, rc, &mut table.pairs, emit, after)
+                }
             };
             return;
         }
@@ -242,12 +279,22 @@ impl Fill<'_> {
             .map(|run| list.candidates().slice(run[0] as usize..run[1] as usize))
             .collect();
         let parallel = on_all_threads(list.candidates().len());
-        let kept = chunked::flat_map_ordered(&runs, &mut table.pairs, parallel, |run, out| {
-            for &(i, j) in *run {
-                let d = q[i as usize] - q[j as usize];
-                out.extend(image(i, j, d).and_then(|g| pair(i, j, g)));
-            }
-        });
+        let (groups, split) = (&from.colours, from.independent);
+        let kept = chunked::flat_map_ordered(
+            &runs,
+            groups,
+            split,
+            &mut table.pairs,
+            parallel,
+            |run, out| {
+                let start = out.len();
+                for &(i, j) in *run {
+                    let d = q[i as usize] - q[j as usize];
+                    out.extend(image(i, j, d).and_then(|g| pair(i, j, g)));
+                }
+                after(&out[start..]);
+            },
+        );
         let groups = &mut table.groups;
         groups.runs.clear();
         groups.runs.push(0);
@@ -294,28 +341,10 @@ impl PairTable {
         visit: impl Fn(&Pair, f64, f64) -> T + Sync,
     ) -> T {
         let shifts = self.shifts();
-        let noise = noise.map(|noise| (noise, self.read(noise.id)));
+        let noise = noise.map(|noise| noise.of(self.bound()));
         self.visit_runs(order, |range, pairs| {
-            NORMALS.with_borrow_mut(|normals| {
-                let n = pairs.len();
-                let z = noise.map(|(noise, id)| {
-                    normals.resize(n, 0.0);
-                    let key = |k: usize| (id.get(pairs[k].i), id.get(pairs[k].j));
-                    pair_normals(noise.seed, noise.step, noise.stream, key, &mut normals[..n]);
-                    &normals[..n]
-                });
-                let dvx = shifts.map(|s| &s[range][..n]);
-                let mut t = T::default();
-                for k in 0..n {
-                    let k = match order {
-                        SweepOrder::Forward => k,
-                        SweepOrder::Reverse => n - 1 - k,
-                    };
-                    let (z, dvx) = (z.map_or(0.0, |z| z[k]), dvx.map_or(0.0, |s| s[k]));
-                    t = t.add(visit(&pairs[k], z, dvx));
-                }
-                t
-            })
+            let dvx = shifts.map(|s| &s[range][..pairs.len()]);
+            visit_run(pairs, dvx, order, noise, &visit)
         })
     }
 
@@ -357,6 +386,55 @@ impl PairTable {
     }
 }
 
+/// Visit the pairs of one run in `order` as [`PairTable::visit_sum_noisy`] does, `dvx` their
+/// velocity shifts (all 0 with `None`), and sum what `visit` returns in visiting order.
+#[inline(always)]
+pub(crate) fn visit_run<T: Virial>(
+    pairs: &[Pair],
+    dvx: Option<&[f64]>,
+    order: SweepOrder,
+    noise: Option<Drawn>,
+    visit: &impl Fn(&Pair, f64, f64) -> T,
+) -> T {
+    NORMALS.with_borrow_mut(|normals| {
+        let n = pairs.len();
+        let z = noise.map(|Drawn { noise, id }| {
+            normals.resize(n, 0.0);
+            let key = |k: usize| (id.get(pairs[k].i), id.get(pairs[k].j));
+            pair_normals(noise.seed, noise.step, noise.stream, key, &mut normals[..n]);
+            &normals[..n]
+        });
+        let dvx = dvx.map(|s| &s[..n]);
+        let mut t = T::default();
+        for k in 0..n {
+            let k = match order {
+                SweepOrder::Forward => k,
+                SweepOrder::Reverse => n - 1 - k,
+            };
+            let (z, dvx) = (z.map_or(0.0, |z| z[k]), dvx.map_or(0.0, |s| s[k]));
+            t = t.add(visit(&pairs[k], z, dvx));
+        }
+        t
+    })
+}
+
+/// [`Noise`] with its ids checked against a table's bound, as [`visit_run`] draws from it.
+#[derive(Clone, Copy)]
+pub(crate) struct Drawn<'a> {
+    noise: Noise<'a>,
+    id: ByPair<'a, u32>,
+}
+
+impl<'a> Noise<'a> {
+    /// This noise for the pairs of a table with index bound `bound`.
+    pub(crate) fn of(self, bound: Bound) -> Drawn<'a> {
+        Drawn {
+            noise: self,
+            id: bound.read(self.id),
+        }
+    }
+}
+
 /// The noise of one pairwise sweep: pair `(i, j)` gets the standard normal
 /// `pair_normal(seed, step, stream, id[i], id[j])` ([`crate::rng`]).
 #[derive(Clone, Copy)]
@@ -394,32 +472,57 @@ impl Virial for Tensor {
 }
 
 impl PairTable {
-    /// `data`, one entry per particle, for reading by the pairs' indices without a bounds
-    /// check per pair. Panics unless it has an entry for every index of the table.
+    /// The bound on the pairs' indices, for indexing per-particle arrays by them.
+    pub(crate) fn bound(&self) -> Bound {
+        Bound(self.particles)
+    }
+
+    /// [`Bound::read`] for this table.
     pub(crate) fn read<'a, T: Copy>(&self, data: &'a [T]) -> ByPair<'a, T> {
-        assert!(
-            data.len() >= self.particles,
-            "{} entries for a pair table of {} particles",
-            data.len(),
-            self.particles
-        );
+        self.bound().read(data)
+    }
+
+    /// [`Bound::write`] for this table.
+    pub(crate) fn write<'a, T>(&self, data: &'a mut [T]) -> Disjoint<'a, T> {
+        self.bound().write(data)
+    }
+}
+
+/// A bound on the particle indices of a pair table: the particle count of its fill.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Bound(usize);
+
+impl Bound {
+    /// The bound of a table filled from positions `q` (its indices are below `q.len()`).
+    pub(crate) fn of(q: &[Vec3]) -> Self {
+        Bound(q.len())
+    }
+
+    /// `data`, one entry per particle, for reading by the pairs' indices without a bounds
+    /// check per pair. Panics unless it has an entry for every index below the bound.
+    pub(crate) fn read<T: Copy>(self, data: &[T]) -> ByPair<'_, T> {
+        self.check(data.len());
         ByPair(data)
     }
 
     /// [`Disjoint`] over `data`, for writing by the pairs' indices without a bounds check per
-    /// pair. Panics unless it has an entry for every index of the table.
-    pub(crate) fn write<'a, T>(&self, data: &'a mut [T]) -> Disjoint<'a, T> {
-        assert!(
-            data.len() >= self.particles,
-            "{} entries for a pair table of {} particles",
-            data.len(),
-            self.particles
-        );
+    /// pair ([`Disjoint::get_paired`]). Panics unless it has an entry for every index below
+    /// the bound.
+    pub(crate) fn write<T>(self, data: &mut [T]) -> Disjoint<'_, T> {
+        self.check(data.len());
         Disjoint::new(data)
+    }
+
+    fn check(self, len: usize) {
+        assert!(
+            len >= self.0,
+            "{len} entries for a pair table of {} particles",
+            self.0
+        );
     }
 }
 
-/// A per-particle slice with an entry for every index of a pair table ([`PairTable::read`]).
+/// A per-particle slice with an entry for every index of a pair table ([`Bound::read`]).
 #[derive(Clone, Copy)]
 pub(crate) struct ByPair<'a, T>(&'a [T]);
 
@@ -429,7 +532,7 @@ impl<T: Copy> ByPair<'_, T> {
     pub(crate) fn get(self, i: u32) -> T {
         debug_assert!((i as usize) < self.0.len());
         // SAFETY: `i` is an index of the table, below its particle count (see
-        // `PairTable::particles`), and the slice has that many entries (checked in `read`).
+        // `PairTable::particles`), and the slice has that many entries (`Bound::read`).
         unsafe { *self.0.get_unchecked(i as usize) }
     }
 }
@@ -467,17 +570,17 @@ impl<'a, T> Disjoint<'a, T> {
     }
 
     /// [`Disjoint::get`] for `i` an index of the pair table this was made for
-    /// ([`PairTable::write`]), without the bounds check.
+    /// ([`Bound::write`]), without the bounds check.
     ///
     /// # Safety
-    /// As for [`Disjoint::get`]; and `self` must come from [`PairTable::write`] of the table
-    /// whose pair holds `i`.
+    /// As for [`Disjoint::get`]; and `self` must come from [`Bound::write`] with the bound of
+    /// the table whose pair holds `i`.
     #[inline(always)]
     #[allow(clippy::mut_from_ref)]
     pub(crate) unsafe fn get_paired(&self, i: u32) -> &mut T {
         debug_assert!((i as usize) < self.len);
-        // SAFETY: below the table's particle count, which `PairTable::write` checked against
-        // the length; exclusivity is the caller's contract.
+        // SAFETY: below the table's particle count, which `Bound::write` checked against the
+        // length; exclusivity is the caller's contract.
         unsafe { &mut *self.ptr.add(i as usize) }
     }
 }

@@ -5,7 +5,7 @@ use crate::error::{finite_vectors, positive, ParamError};
 use crate::force;
 use crate::neighbour::VerletList;
 use crate::observe::ImpulseVirial;
-use crate::pairs::PairTable;
+use crate::pairs::{Bound, Pair, PairTable};
 use crate::params::Params;
 use crate::walls::{FrozenWalls, Walls};
 use crate::{Tensor, Vec3};
@@ -487,12 +487,7 @@ impl System {
 
     pub(crate) fn ensure_pairs(&mut self) {
         if !self.pairs_valid {
-            if self
-                .list
-                .needs_rebuild(&self.q, &self.bx, self.shear.as_ref())
-            {
-                self.rebuild_list();
-            }
+            self.prepare_list();
             self.pairs.collect(
                 &self.list,
                 &self.q,
@@ -531,6 +526,16 @@ impl System {
             (list, pairs, conservative, backup);
         scratch.ensure_conservative();
         f(&scratch, &scratch.pairs, &scratch.conservative)
+    }
+
+    /// Rebuild the neighbour list if the positions call for it.
+    fn prepare_list(&mut self) {
+        if self
+            .list
+            .needs_rebuild(&self.q, &self.bx, self.shear.as_ref())
+        {
+            self.rebuild_list();
+        }
     }
 
     /// Re-sort the particles into the cell order of a fresh grid and build the list on them.
@@ -580,7 +585,10 @@ impl System {
     }
 
     pub(crate) fn ensure_conservative(&mut self) {
-        if !self.conservative_valid {
+        if self.conservative_valid {
+            return;
+        }
+        if !self.fills_plainly() {
             self.ensure_pairs();
             force::conservative(
                 &self.pairs,
@@ -588,20 +596,47 @@ impl System {
                 &self.kind,
                 &mut self.conservative,
             );
-            self.conservative_valid = true;
-            self.counters.force_evaluations += 1;
+        } else {
+            // The forces of each run summed while the run is in cache, in the order of a pass
+            // over the table: the same numbers.
+            self.prepare_list();
+            let out = force::zeroed(&mut self.conservative, self.kind.len());
+            let add = force::Conservative::new(Bound::of(&self.q), &self.params, &self.kind, out);
+            let each = |run: &[Pair]| run.iter().for_each(|pair| add.pair(pair));
+            self.pairs
+                .collect_then(&self.list, &self.q, &self.bx, &self.params, each);
+            self.pairs_valid = true;
+            self.counters.pair_distance_evaluations += 1;
         }
+        self.conservative_valid = true;
+        self.counters.force_evaluations += 1;
     }
 
     /// Full forces for an F stage: reused while positions are unchanged, otherwise evaluated
     /// at the current momenta with the noise of `stream` in the current step.
     pub(crate) fn ensure_full(&mut self, stream: u8) {
-        if !self.full_valid {
+        if self.full_valid {
+            return;
+        }
+        if self.fills_plainly() {
+            self.prepare_list();
+            force::full_while_filling(self, stream);
+            self.full_virial = None;
+            self.pairs_valid = true;
+            self.counters.pair_distance_evaluations += 1;
+        } else {
             self.ensure_pairs();
             force::full(self, stream);
-            self.full_valid = true;
-            self.counters.force_evaluations += 1;
         }
+        self.full_valid = true;
+        self.counters.force_evaluations += 1;
+    }
+
+    /// Whether a force evaluation may fill the pair table and apply the forces run by run
+    /// ([`PairTable::collect_then`]): the table is stale, the box is periodic without walls,
+    /// and no pair impulses are being recorded.
+    fn fills_plainly(&self) -> bool {
+        !self.pairs_valid && self.shear.is_none() && self.walls.is_none() && self.impulses.is_none()
     }
 }
 

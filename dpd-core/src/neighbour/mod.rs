@@ -424,9 +424,13 @@ impl CellGrid {
     /// All pairs within `cutoff` in the sweep order of the module docs: `emit(hits, out)` is
     /// called with them, a particle's hits among a block of candidates at a time (cell-order
     /// indices into `pos`, separations the minimum-image `q_a - q_b`), and may push any number
-    /// of items into `out`. Cells are scanned on all threads and
-    /// joined in order, so the result does not depend on the thread count. `items` is
-    /// refilled (its allocation reused); returns the grouping into runs and colours.
+    /// of items into `out`. After the last cell of a unit, `after(run)` is called with the
+    /// unit's items, and with the items of each top-row cell across a sliding boundary. Units
+    /// are scanned colour by colour, those of one colour on all threads, and joined in order,
+    /// so the result does not depend on the thread count, and `after` may update the particles
+    /// of its run's pairs (concurrent runs share no particle). `items` is refilled (its
+    /// allocation reused); returns the grouping into runs and colours.
+    #[allow(clippy::too_many_arguments)]
     pub fn sweep<T: Send>(
         &self,
         pos: &[Vec3],
@@ -435,6 +439,7 @@ impl CellGrid {
         cutoff: f64,
         items: &mut Parts<T>,
         emit: impl Fn(&Hits, &mut Vec<T>) + Sync,
+        after: impl Fn(&[T]) + Sync,
     ) -> Runs {
         // Every index handed on lies in a cell range of the last bin, so below pos.len().
         assert_eq!(
@@ -449,16 +454,23 @@ impl CellGrid {
             .map(|u| u[0] as usize..u[1] as usize)
             .collect();
         let parallel = pos.len() >= PARALLEL_MIN_PARTICLES;
-        let found = chunked::flat_map_ordered(&units, items, parallel, |unit, out| {
-            with_stencil(|stencil| {
-                with_avx2(|| {
-                    for &c in &self.sweep[unit.clone()] {
-                        let (c, emit) = (c as usize, |h: &Hits| emit(h, out));
-                        self.for_each_pair_of_cell(c, stencil, &scan, emit);
-                    }
-                })
-            })
-        });
+        let (groups, split) = (
+            &self.colour_units,
+            if self.coloured { self.colours() } else { 0 },
+        );
+        let found =
+            chunked::flat_map_ordered(&units, groups, split, items, parallel, |unit, out| {
+                let start = out.len();
+                with_stencil(|stencil| {
+                    with_avx2(|| {
+                        for &c in &self.sweep[unit.clone()] {
+                            let (c, emit) = (c as usize, |h: &Hits| emit(h, out));
+                            self.for_each_pair_of_cell(c, stencil, &scan, emit);
+                        }
+                    })
+                });
+                after(&out[start..]);
+            });
         let mut groups = Runs {
             runs: vec![0],
             colours: vec![0],
@@ -480,10 +492,12 @@ impl CellGrid {
                 let mut hits = Hits::default();
                 // Only top-row cells own such pairs; the others find none.
                 for c in 0..self.cells() {
+                    let start = part.len();
                     self.for_each_sliding_pair_of_cell(c, pos, bx, le, cutoff, |a, b, d| {
                         hits.set_one(a, b, d);
                         emit(&hits, part)
                     });
+                    after(&part[start..]);
                     let end = (base + part.len()) as u32;
                     if end != *runs.last().unwrap_or(&0) {
                         runs.push(end);
@@ -667,7 +681,7 @@ impl VerletList {
             let reach = rc + self.skin;
             self.groups = self
                 .grid
-                .sweep(q, bx, shear, reach, &mut self.candidates, push);
+                .sweep(q, bx, shear, reach, &mut self.candidates, push, |_| {});
             self.reference.clear();
             self.reference.extend_from_slice(q);
         }
