@@ -1,6 +1,7 @@
 //! The interacting pairs of the current positions, with the geometry every sub-flow needs,
 //! and the executor that visits them in the sweep order of [`crate::neighbour`].
 
+use crate::avx2::with_avx2;
 use crate::boundary::{LeesEdwards, PeriodicBox};
 use crate::chunked::{self, Parts};
 use crate::neighbour::{Hits, Runs, VerletList};
@@ -387,7 +388,8 @@ impl PairTable {
 }
 
 /// Visit the pairs of one run in `order` as [`PairTable::visit_sum_noisy`] does, `dvx` their
-/// velocity shifts (all 0 with `None`), and sum what `visit` returns in visiting order.
+/// velocity shifts (all 0 with `None`), and sum what `visit` returns in visiting order. Runs in
+/// code compiled with AVX2 where the CPU has it.
 #[inline(always)]
 pub(crate) fn visit_run<T: Virial>(
     pairs: &[Pair],
@@ -397,24 +399,26 @@ pub(crate) fn visit_run<T: Virial>(
     visit: &impl Fn(&Pair, f64, f64) -> T,
 ) -> T {
     NORMALS.with_borrow_mut(|normals| {
-        let n = pairs.len();
-        let z = noise.map(|Drawn { noise, id }| {
-            normals.resize(n, 0.0);
-            let key = |k: usize| (id.get(pairs[k].i), id.get(pairs[k].j));
-            pair_normals(noise.seed, noise.step, noise.stream, key, &mut normals[..n]);
-            &normals[..n]
-        });
-        let dvx = dvx.map(|s| &s[..n]);
-        let mut t = T::default();
-        for k in 0..n {
-            let k = match order {
-                SweepOrder::Forward => k,
-                SweepOrder::Reverse => n - 1 - k,
-            };
-            let (z, dvx) = (z.map_or(0.0, |z| z[k]), dvx.map_or(0.0, |s| s[k]));
-            t = t.add(visit(&pairs[k], z, dvx));
-        }
-        t
+        with_avx2(|| {
+            let n = pairs.len();
+            let z = noise.map(|Drawn { noise, id }| {
+                normals.resize(n, 0.0);
+                let key = |k: usize| (id.get(pairs[k].i), id.get(pairs[k].j));
+                pair_normals(noise.seed, noise.step, noise.stream, key, &mut normals[..n]);
+                &normals[..n]
+            });
+            let dvx = dvx.map(|s| &s[..n]);
+            let mut t = T::default();
+            for k in 0..n {
+                let k = match order {
+                    SweepOrder::Forward => k,
+                    SweepOrder::Reverse => n - 1 - k,
+                };
+                let (z, dvx) = (z.map_or(0.0, |z| z[k]), dvx.map_or(0.0, |s| s[k]));
+                t = t.add(visit(&pairs[k], z, dvx));
+            }
+            t
+        })
     })
 }
 
