@@ -168,12 +168,15 @@ impl CellGrid {
         }
         let ncell = self.cells();
         let per_length = [0, 1, 2].map(|k| dims[k] as f64 / l[k]);
+        let last = [0, 1, 2].map(|k| (dims[k] - 1) as f64);
         let cell_of = |x: &Vec3| {
             let mut c = 0usize;
             for k in 0..3 {
-                // `as usize` saturates (NaN -> 0); the clamp keeps rounding at L in range.
-                let ck = (x[k] * per_length[k]) as usize;
-                c = c * dims[k] + ck.min(dims[k] - 1);
+                // Clamped before the conversion (NaN to 0: `max` takes the number), which
+                // then needs no saturation; the upper clamp keeps rounding at L in range.
+                let ck = (x[k] * per_length[k]).max(0.0).min(last[k]);
+                // SAFETY: ck is finite and in [0, dims[k] - 1], below 2^10.
+                c = c * dims[k] + unsafe { ck.to_int_unchecked::<u32>() } as usize;
             }
             c
         };

@@ -84,18 +84,46 @@ pub(super) struct Stencil {
 
 /// Which candidates of a block are hits.
 struct Block {
-    inside: [bool; BLOCK],
-    /// `at[s]`: the block position of hit `s`.
-    at: [u8; BLOCK],
+    /// 1 for a hit, 0 else; whole groups of 8 past the block's end are 0 or masked off.
+    inside: [u8; BLOCK],
+    /// `at[s]`: the block position of hit `s` (and up to 7 bytes of scratch after the last).
+    at: [u8; BLOCK + 8],
 }
 
 impl Default for Block {
     fn default() -> Self {
         Block {
-            inside: [false; BLOCK],
-            at: [0; BLOCK],
+            inside: [0; BLOCK],
+            at: [0; BLOCK + 8],
         }
     }
+}
+
+/// For each set of hits among 8 candidates (bit `l` of the index for candidate `l`): their
+/// positions 0 to 7 in ascending order, one per byte from the lowest, and their number.
+const SPREAD: [(u64, u8); 256] = {
+    let mut table = [(0, 0); 256];
+    let mut mask = 0;
+    while mask < 256 {
+        let (mut positions, mut count, mut l) = (0u64, 0u8, 0);
+        while l < 8 {
+            if mask & (1 << l) != 0 {
+                positions |= (l as u64) << (8 * count);
+                count += 1;
+            }
+            l += 1;
+        }
+        table[mask] = (positions, count);
+        mask += 1;
+    }
+    table
+};
+
+/// The hit bits of 8 flags (bytes 0 or 1, the first in the lowest byte of `flags`): the
+/// multiplication moves byte `l`'s low bit to bit `56 + l`, without carries into those bits.
+#[inline(always)]
+fn hit_bits(flags: u64) -> usize {
+    (flags.wrapping_mul(0x0102_0408_1020_4080) >> 56) as usize
 }
 
 thread_local! {
@@ -185,14 +213,21 @@ impl Stencil {
                 let Block { inside, at } = block;
                 for (((inside, &x), &y), &z) in inside.iter_mut().zip(x).zip(y).zip(z) {
                     let (dx, dy, dz) = (qa.x - x, qa.y - y, qa.z - z);
-                    *inside = dx * dx + dy * dy + dz * dz < cut2;
+                    *inside = u8::from(dx * dx + dy * dy + dz * dz < cut2);
                 }
-                // Every slot is written, the count advances only on a hit: no branch.
+                // The hits' positions, 8 candidates at a time and without a branch: each
+                // group's positions are stored whole at the count so far, which advances by
+                // the group's hits (the next group overwrites the rest).
                 let mut n = 0;
-                for (k, &inside) in inside[..len].iter().enumerate() {
-                    // n <= k < BLOCK, so the mask changes nothing; it spares a bounds check.
-                    at[n & (BLOCK - 1)] = k as u8;
-                    n += inside as usize;
+                for g in 0..len.div_ceil(8) {
+                    let flags: [u8; 8] = inside[8 * g..8 * g + 8].try_into().unwrap();
+                    // Candidates past the block's end are stale: masked off.
+                    let valid = (1usize << (len - 8 * g).min(8)) - 1;
+                    let (positions, count) = SPREAD[hit_bits(u64::from_le_bytes(flags)) & valid];
+                    let positions = positions + 0x0808_0808_0808_0808 * g as u64;
+                    // n <= 8 g, so the slots n..n + 8 are within the array.
+                    at[n..n + 8].copy_from_slice(&positions.to_le_bytes());
+                    n += count as usize;
                 }
                 let index = &self.index[start..end];
                 for (slot, &k) in at[..n].iter().enumerate() {
@@ -335,6 +370,19 @@ mod tests {
 
     /// Every path finds exactly the pairs a direct test finds, in the documented order, also
     /// when pushes span several copy steps and the stencil several blocks of candidates.
+    #[test]
+    fn hit_bits_and_spread_list_every_set_of_flags() {
+        for (mask, &(positions, count)) in SPREAD.iter().enumerate() {
+            let flags: [u8; 8] = std::array::from_fn(|l| u8::from(mask & (1 << l) != 0));
+            assert_eq!(hit_bits(u64::from_le_bytes(flags)), mask);
+            let listed: Vec<usize> = (0..count as usize)
+                .map(|s| (positions >> (8 * s)) as usize & 0xFF)
+                .collect();
+            let want: Vec<usize> = (0..8).filter(|l| mask & (1 << l) != 0).collect();
+            assert_eq!(listed, want, "mask {mask:08b}");
+        }
+    }
+
     #[test]
     fn blocks_find_the_pairs_in_order() {
         let mut rng = rand::rngs::StdRng::seed_from_u64(5);
