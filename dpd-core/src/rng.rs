@@ -8,9 +8,10 @@
 //! SC 2011), written here by hand because no maintained crate of the rand family provides a
 //! keyed counter-based generator; its output is checked against the published known-answer
 //! vectors of Random123. Standard normals come from `rand_distr::StandardNormal` (ziggurat)
-//! drawing on the Philox blocks of the key. The pair passes draw the normals of a whole pair
-//! table at once with [`pair_normals`], which computes the first blocks of several pairs in
-//! vector registers and gives the same numbers as [`pair_normal`].
+//! drawing on the Philox blocks of the key. The pair passes draw the normals of a run of pairs
+//! at once with [`pair_normals`], which computes the first blocks of several pairs in vector
+//! registers, runs the ziggurat's first test inline and gives the same numbers as
+//! [`pair_normal`].
 //!
 //! Counter layout (128 bits): `[i, j, step low 32 bits, step bits 32..47 << 16 | stream << 8 |
 //! block]`, key = seed. Steps up to 2^48, 256 streams per step, 256 blocks of 128 bits per pair.
@@ -134,9 +135,9 @@ fn philox_lanes_avx2(ctr: &mut [[u32; LANES]; 4], key: [u32; 2]) {
 
 /// `out[k] = pair_normal(seed, step, stream, i, j)` for `(i, j) = pair(k)`: the first Philox
 /// blocks of `LANES` pairs at a time are computed together, then each pair's first draw goes
-/// through the ziggurat's first test inline (module `ziggurat`); the 1.5 % it rejects are sampled by
-/// `rand_distr` on the pair's [`PairRng`], which draws further blocks. Bitwise the same
-/// as [`pair_normal`]. On x86_64 CPUs with AVX2 (detected at run time) the blocks are
+/// through the ziggurat's first test inline (module `ziggurat`); the 1.5 % it rejects are
+/// sampled by `rand_distr` on the pair's [`PairRng`], which draws further blocks. Bitwise the
+/// same as [`pair_normal`]. On x86_64 CPUs with AVX2 (detected at run time) the blocks are
 /// computed in AVX2 registers and the rest is compiled with AVX2; the integer results are the
 /// same.
 pub fn pair_normals(
