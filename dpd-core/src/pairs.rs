@@ -118,24 +118,12 @@ impl PairTable {
         walls: Option<&FrozenWalls>,
         params: &Params,
     ) {
-        let fill = Fill {
-            list,
-            q,
-            bx,
-            shear,
-            params,
-        };
-        self.shifted = shear.is_some() || walls.is_some();
-        self.shifts.clear();
-        self.particles = q.len();
         match (shear, walls) {
-            (None, None) => {
-                let image = |_, _, d| Some(bx.min_image(d));
-                fill.into(self, image, None::<Separation>, |_: &[Pair]| {})
-            }
+            (None, None) => self.collect_then(list, q, bx, params, |_: &[Pair]| {}),
             // The scan's separation is the image, but the velocity shift needs the crossing
             // count: both come from the positions.
             (Some(le), _) => {
+                let fill = self.start_fill(list, q, bx, shear, params, true);
                 let image = |i: u32, j: u32| le.min_image(bx, q[i as usize] - q[j as usize]);
                 let from_positions = |i, j, _| Some(image(i, j).0);
                 fill.into(self, from_positions, Some(from_positions), |_: &[Pair]| {});
@@ -143,6 +131,7 @@ impl PairTable {
                 self.shifts.extend(shifts);
             }
             (None, Some(w)) => {
+                let fill = self.start_fill(list, q, bx, None, params, true);
                 let mobile = |i: u32, j: u32, d: Vec3| {
                     (!(w.frozen[i as usize] && w.frozen[j as usize])).then_some(d)
                 };
@@ -168,18 +157,32 @@ impl PairTable {
         params: &Params,
         after: impl Fn(&[Pair]) + Sync,
     ) {
-        let fill = Fill {
+        let fill = self.start_fill(list, q, bx, None, params, false);
+        let image = |_, _, d| Some(bx.min_image(d));
+        fill.into(self, image, None::<Separation>, after);
+    }
+
+    /// Reset the table for a fill at positions `q`, which records velocity shifts if
+    /// `shifted`, and what the fill reads.
+    fn start_fill<'a>(
+        &mut self,
+        list: &'a VerletList,
+        q: &'a [Vec3],
+        bx: &'a PeriodicBox,
+        shear: Option<&'a LeesEdwards>,
+        params: &'a Params,
+        shifted: bool,
+    ) -> Fill<'a> {
+        self.shifted = shifted;
+        self.shifts.clear();
+        self.particles = q.len();
+        Fill {
             list,
             q,
             bx,
-            shear: None,
+            shear,
             params,
-        };
-        self.shifted = false;
-        self.shifts.clear();
-        self.particles = q.len();
-        let image = |_, _, d| Some(bx.min_image(d));
-        fill.into(self, image, None::<Separation>, after);
+        }
     }
 }
 

@@ -368,8 +368,8 @@ mod tests {
         }
     }
 
-    /// Every path finds exactly the pairs a direct test finds, in the documented order, also
-    /// when pushes span several copy steps and the stencil several blocks of candidates.
+    /// For each of the 256 sets of hits among 8 candidates, `hit_bits` recovers the set from
+    /// the flags and `SPREAD` lists its positions in order.
     #[test]
     fn hit_bits_and_spread_list_every_set_of_flags() {
         for (mask, &(positions, count)) in SPREAD.iter().enumerate() {
@@ -383,6 +383,8 @@ mod tests {
         }
     }
 
+    /// Every path finds exactly the pairs a direct test finds, in the documented order, also
+    /// when pushes span several copy steps and the stencil several blocks of candidates.
     #[test]
     fn blocks_find_the_pairs_in_order() {
         let mut rng = rand::rngs::StdRng::seed_from_u64(5);
