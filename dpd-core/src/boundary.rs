@@ -252,13 +252,23 @@ fn wrap1(x: f64, l: f64) -> f64 {
     if (0.0..l).contains(&y) {
         y
     } else {
-        // Far outside (or rounding landed exactly on l): the general, slower path.
-        let z = x.rem_euclid(l);
-        if z < l {
-            z
-        } else {
-            0.0
-        }
+        far_wrap1(x, l)
+    }
+}
+
+/// [`wrap1`] for `x` more than one length out (or when rounding lands on `l`), and for
+/// infinite `x`, which stays as it is.
+#[cold]
+#[inline(never)]
+fn far_wrap1(x: f64, l: f64) -> f64 {
+    if x.is_infinite() {
+        return x;
+    }
+    let z = x.rem_euclid(l);
+    if z < l {
+        z
+    } else {
+        0.0
     }
 }
 
@@ -289,6 +299,11 @@ mod tests {
             }
         }
         assert!(b.wrap(Vec3::new(f64::NAN, 0.0, 0.0)).x.is_nan());
+        assert_eq!(b.wrap(Vec3::new(0.0, f64::INFINITY, 0.0)).y, f64::INFINITY);
+        assert_eq!(
+            b.wrap(Vec3::new(0.0, 0.0, f64::NEG_INFINITY)).z,
+            f64::NEG_INFINITY
+        );
     }
 
     #[test]

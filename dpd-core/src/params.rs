@@ -2,6 +2,7 @@
 //! construction.
 
 use crate::error::{non_negative, positive, ParamError};
+use crate::pairs::ByPair;
 use serde::{Deserialize, Serialize};
 
 /// Validated pair-force parameters.
@@ -199,6 +200,17 @@ impl Repulsion<'_> {
     #[inline(always)]
     pub fn of(self, ti: u16, tj: u16) -> f64 {
         self.a[ti as usize * self.types + tj as usize]
+    }
+
+    /// Repulsion between particles `i` and `j` of a pair table, their types in `kind`. With
+    /// one type the types are not read: a pair loop then loads two values fewer per pair.
+    #[inline(always)]
+    pub(crate) fn of_pair(self, kind: ByPair<'_, u16>, i: u32, j: u32) -> f64 {
+        if self.types == 1 {
+            self.a[0]
+        } else {
+            self.of(kind.get(i), kind.get(j))
+        }
     }
 }
 

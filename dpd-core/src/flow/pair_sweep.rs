@@ -103,7 +103,7 @@ fn sweep_with<const SHIFTED: bool, V: Virial>(
             mu,
             pair,
             a: if conservative_h != 0.0 {
-                a.of(kind.get(i), kind.get(j))
+                a.of_pair(kind, i, j)
             } else {
                 0.0
             },
