@@ -67,7 +67,7 @@ fn move_particles(
     }
     // The largest squared displacement of a range of particles, NaN if any is NaN: `max`
     // skips NaN, so a NaN is caught by the sum, which only NaN makes NaN (no term is negative).
-    // Both are one instruction per particle, with no branch.
+    // Neither branches (a NaN test per particle did); `moved` and `wrap` are inlined here.
     let range = |q: &mut [Vec3], p: &mut [Vec3], inv_mass: &[f64], mass: &[f64]| -> f64 {
         let (mut max2, mut sum2) = (0.0f64, 0.0);
         for (((q, p), &im), &m) in q.iter_mut().zip(p).zip(inv_mass).zip(mass) {
