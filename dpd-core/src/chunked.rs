@@ -147,19 +147,15 @@ mod tests {
         let items: Vec<u32> = (0..1000).collect();
         let groups = [0, 1, 400, 401, 1000];
         let f = |&k: &u32, out: &mut Vec<u32>| out.extend((0..k % 7).map(|x| x * k));
-        let one = rayon::ThreadPoolBuilder::new()
-            .num_threads(1)
-            .build()
-            .unwrap();
-        let three = rayon::ThreadPoolBuilder::new()
-            .num_threads(3)
-            .build()
-            .unwrap();
         let (mut out_a, mut out_b) = (Parts::default(), Parts::default());
-        let a = one.install(|| flat_map_ordered(&items, &groups, 3, &mut out_a, true, f));
-        // A second fill reuses the parts.
-        three.install(|| flat_map_ordered(&items[..10], &[0, 3, 10], 2, &mut out_b, true, f));
-        let b = three.install(|| flat_map_ordered(&items, &groups, 3, &mut out_b, true, f));
+        let a = crate::on_threads(1, || {
+            flat_map_ordered(&items, &groups, 3, &mut out_a, true, f)
+        });
+        let b = crate::on_threads(3, || {
+            // A second fill reuses the parts.
+            flat_map_ordered(&items[..10], &[0, 3, 10], 2, &mut out_b, true, f);
+            flat_map_ordered(&items, &groups, 3, &mut out_b, true, f)
+        });
         assert_eq!(a, b);
         let (all_a, all_b): (Vec<u32>, Vec<u32>) = (
             out_a.iter().copied().collect(),

@@ -246,11 +246,7 @@ mod tests {
     #[test]
     fn forces_summed_while_filling_equal_a_pass_over_the_table() {
         for threads in [1, 3] {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            pool.install(|| {
+            crate::on_threads(threads, || {
                 let params = Params::builder().build().unwrap();
                 let mut sys = equilibrium_box(params, 20_000, 3.0, 7)
                     .unwrap()

@@ -35,6 +35,16 @@ pub mod walls;
 #[doc(hidden)]
 pub mod __private;
 
+/// `f()` on a rayon pool of `threads` threads: unit tests compare one thread with several.
+#[cfg(test)]
+pub(crate) fn on_threads<R: Send>(threads: usize, f: impl FnOnce() -> R + Send) -> R {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap()
+        .install(f)
+}
+
 pub use boundary::{LeesEdwards, PeriodicBox};
 pub use dpd_ir::{Flow, Stage, SweepOrder};
 pub use error::{BlowUp, CheckpointError, ParamError};

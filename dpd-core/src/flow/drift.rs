@@ -129,11 +129,7 @@ mod tests {
     #[test]
     fn the_drift_bound_is_the_largest_displacement_and_nan_poisons_it() {
         for threads in [1, 2] {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            pool.install(|| {
+            crate::on_threads(threads, || {
                 for n in [300, 40_000] {
                     let mut sys = system(n);
                     drift(&mut sys, 0.1);

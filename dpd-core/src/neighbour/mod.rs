@@ -883,11 +883,7 @@ mod tests {
         let bx = PeriodicBox::cubic(20.0).unwrap();
         let q = uniform_positions(&bx, 24_000, 4);
         let on = |threads| {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            pool.install(|| {
+            crate::on_threads(threads, || {
                 let mut grid = CellGrid::default();
                 (grid.bin(&q, &bx, 1.0).to_vec(), grid.cell_start.clone())
             })

@@ -351,11 +351,7 @@ mod tests {
             .map(|_| Vec3::new(rng.random(), rng.random(), rng.random()))
             .collect();
         for threads in [1, 3] {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            let cols = pool.install(|| Columns::new(&pos));
+            let cols = crate::on_threads(threads, || Columns::new(&pos));
             for (k, column) in [&cols.x, &cols.y, &cols.z].into_iter().enumerate() {
                 let want: Vec<f64> = pos.iter().map(|q| q[k]).collect();
                 assert_eq!(column[..pos.len()], want[..], "axis {k}, {threads} threads");
