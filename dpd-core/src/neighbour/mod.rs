@@ -94,9 +94,6 @@ pub struct CellGrid {
     colour_units: Vec<u32>,
 }
 
-/// Chunks of particles counted and placed together by [`CellGrid::bin`].
-const BIN_CHUNKS: usize = 8;
-
 /// Below this many particles a sweep scans its units on one thread (at density 3 about
 /// 12 000 pairs, where the pair passes split too).
 const PARALLEL_MIN_PARTICLES: usize = 2048;
@@ -180,25 +177,36 @@ impl CellGrid {
             }
             c
         };
-        // A stable counting sort in chunks of particles: each chunk counts its cells, the
-        // counts give every (cell, chunk) its slots in order, and the chunks fill their slots
-        // on all threads; the order is that of the serial sort.
+        // A stable counting sort in chunks of particles, one per thread: each chunk finds
+        // and counts its particles' cells, the counts give every (cell, chunk) its slots in
+        // order, and the chunks fill their slots on all threads; the order is that of the
+        // serial sort.
         let parallel = on_all_threads(q.len());
-        let chunk = q
-            .len()
-            .div_ceil(if parallel { BIN_CHUNKS } else { 1 })
-            .max(1);
-        let count = |part: &[Vec3]| {
+        let threads = if parallel {
+            rayon::current_num_threads()
+        } else {
+            1
+        };
+        let chunk = q.len().div_ceil(threads).max(1);
+        let mut cell = vec![0u32; q.len()];
+        let count = |(part, cell): (&[Vec3], &mut [u32])| {
             let mut counts = vec![0u32; ncell];
-            for x in part {
-                counts[cell_of(x)] += 1;
+            for (x, c) in part.iter().zip(cell) {
+                *c = cell_of(x) as u32;
+                counts[*c as usize] += 1;
             }
             counts
         };
         let mut slots: Vec<Vec<u32>> = if parallel {
-            q.par_chunks(chunk).map(count).collect()
+            q.par_chunks(chunk)
+                .zip(cell.par_chunks_mut(chunk))
+                .map(count)
+                .collect()
         } else {
-            q.chunks(chunk).map(count).collect()
+            q.chunks(chunk)
+                .zip(cell.chunks_mut(chunk))
+                .map(count)
+                .collect()
         };
         self.cell_start.clear();
         self.cell_start.resize(ncell + 1, 0);
@@ -216,8 +224,9 @@ impl CellGrid {
         self.order.resize(q.len(), 0);
         let order = Disjoint::new(&mut self.order);
         let fill = |(k, slots): (usize, &mut Vec<u32>)| {
-            for (i, x) in q.iter().enumerate().skip(k * chunk).take(chunk) {
-                let slot = &mut slots[cell_of(x)];
+            let start = k * chunk;
+            for (i, &c) in (start..).zip(&cell[start..(start + chunk).min(cell.len())]) {
+                let slot = &mut slots[c as usize];
                 // SAFETY: the chunks own disjoint slots.
                 unsafe { *order.get(*slot as usize) = i as u32 };
                 *slot += 1;
@@ -889,7 +898,14 @@ mod tests {
             })
         };
         let (serial, starts) = on(1);
-        assert_eq!(on(3), (serial.clone(), starts.clone()));
+        // One chunk per thread; with 7 the last chunk is shorter than the others.
+        for threads in [2, 3, 7] {
+            assert_eq!(
+                on(threads),
+                (serial.clone(), starts.clone()),
+                "{threads} threads"
+            );
+        }
         // Stable: within a cell, ascending input index.
         for c in starts.windows(2) {
             let cell = &serial[c[0] as usize..c[1] as usize];
