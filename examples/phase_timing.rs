@@ -1,0 +1,81 @@
+//! Wall time of each sub-flow of an ABOBA step on the equilibrium box (density 3, a = 25,
+//! gamma = 4.5, k_B T = 1, dt = 0.04, skin 0), to see which part of a step scales across
+//! threads and which does not. The flows are called one by one, as `reference::Aboba` calls
+//! them, without `advance`'s blow-up guard. The first kick includes the neighbour-list rebuild
+//! (binning, re-sorting) and the pair-table fill with the conservative forces; the second
+//! reuses them.
+//!
+//! Usage: `cargo run --release --example phase_timing -- --n 192000 --steps 20 --threads 2`
+
+use clap::Parser;
+use dpd::flow::{drift, kick, ou, SweepOrder};
+use dpd::init::equilibrium_box;
+use dpd::reference::Aboba;
+use dpd::{Params, System};
+use std::time::Instant;
+
+#[derive(Parser)]
+struct Args {
+    /// Particles.
+    #[arg(long, default_value_t = 192_000)]
+    n: usize,
+    /// Timed steps (after 30 steps of relaxation).
+    #[arg(long, default_value_t = 20)]
+    steps: u32,
+    /// Threads of the rayon pool.
+    #[arg(long, default_value_t = 1)]
+    threads: usize,
+}
+
+/// A sub-flow of the step, given the step size `dt`.
+type Phase = fn(&mut System, f64);
+
+/// The sub-flows of one ABOBA step, in order.
+const PHASES: [(&str, Phase); 5] = [
+    ("drift h/2", |s, dt| drift(s, 0.5 * dt)),
+    ("kick h/2 + rebuild + fill", |s, dt| kick(s, 0.5 * dt)),
+    ("ou h", |s, dt| ou(s, dt, 0, SweepOrder::Forward)),
+    ("kick h/2", |s, dt| kick(s, 0.5 * dt)),
+    ("drift h/2", |s, dt| drift(s, 0.5 * dt)),
+];
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args = Args::parse();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(args.threads)
+        .build()?;
+    let params = Params::builder().a(25.0).gamma(4.5).kbt(1.0).build()?;
+    let mut sys = equilibrium_box(params, args.n, 3.0, 1)?
+        .dt(0.04)
+        .skin(0.0)
+        .build()?;
+    let dt = sys.dt();
+    let seconds = pool.install(|| -> Result<[f64; 5], dpd::BlowUp> {
+        sys.advance(&Aboba, 30)?;
+        let mut seconds = [0.0; 5];
+        for _ in 0..args.steps {
+            for ((_, phase), total) in PHASES.iter().zip(&mut seconds) {
+                let start = Instant::now();
+                phase(&mut sys, dt);
+                *total += start.elapsed().as_secs_f64();
+            }
+        }
+        Ok(seconds)
+    })?;
+    let ms = |s: f64| s / f64::from(args.steps) * 1e3;
+    for ((name, _), s) in PHASES.iter().zip(seconds) {
+        println!(
+            "{{\"threads\": {}, \"n\": {}, \"phase\": \"{name}\", \"ms_per_step\": {:.2}}}",
+            args.threads,
+            args.n,
+            ms(s)
+        );
+    }
+    println!(
+        "{{\"threads\": {}, \"n\": {}, \"phase\": \"step\", \"ms_per_step\": {:.2}}}",
+        args.threads,
+        args.n,
+        ms(seconds.iter().sum())
+    );
+    Ok(())
+}
