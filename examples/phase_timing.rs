@@ -32,11 +32,11 @@ type Phase = fn(&mut System, f64);
 
 /// The sub-flows of one ABOBA step, in order.
 const PHASES: [(&str, Phase); 5] = [
-    ("drift h/2", |s, dt| drift(s, 0.5 * dt)),
-    ("kick h/2 + rebuild + fill", |s, dt| kick(s, 0.5 * dt)),
-    ("ou h", |s, dt| ou(s, dt, 0, SweepOrder::Forward)),
-    ("kick h/2", |s, dt| kick(s, 0.5 * dt)),
-    ("drift h/2", |s, dt| drift(s, 0.5 * dt)),
+    ("A h/2", |s, dt| drift(s, 0.5 * dt)),
+    ("B h/2, rebuild, fill", |s, dt| kick(s, 0.5 * dt)),
+    ("O h", |s, dt| ou(s, dt, 0, SweepOrder::Forward)),
+    ("B h/2", |s, dt| kick(s, 0.5 * dt)),
+    ("A h/2 again", |s, dt| drift(s, 0.5 * dt)),
 ];
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
