@@ -2,9 +2,9 @@
 //! gamma = 4.5, k_B T = 1, dt = 0.04, skin 0), to see which part of a step scales across
 //! threads and which does not. The flows are called one by one, as `reference::Aboba` calls
 //! them, without `advance`'s blow-up guard; the step counter does not advance, so every timed
-//! step draws the noise of the same step number (at the same cost). The first kick includes the neighbour-list rebuild
-//! (binning, re-sorting) and the pair-table fill with the conservative forces; the second
-//! reuses them.
+//! step draws the noise of the same step number (at the same cost). The first kick includes
+//! the neighbour-list rebuild (binning, re-sorting) and the pair-table fill with the
+//! conservative forces; the second reuses them.
 //!
 //! Usage: `cargo run --release --example phase_timing -- --n 192000 --steps 20 --threads 2`
 
