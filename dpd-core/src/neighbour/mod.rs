@@ -223,9 +223,8 @@ impl CellGrid {
         self.order.clear();
         self.order.resize(q.len(), 0);
         let order = Disjoint::new(&mut self.order);
-        let fill = |(k, slots): (usize, &mut Vec<u32>)| {
-            let start = k * chunk;
-            for (i, &c) in (start..).zip(&cell[start..(start + chunk).min(cell.len())]) {
+        let fill = |(k, (slots, cell)): (usize, (&mut Vec<u32>, &[u32]))| {
+            for (i, &c) in (k * chunk..).zip(cell) {
                 let slot = &mut slots[c as usize];
                 // SAFETY: the chunks own disjoint slots.
                 unsafe { *order.get(*slot as usize) = i as u32 };
@@ -233,9 +232,17 @@ impl CellGrid {
             }
         };
         if parallel {
-            slots.par_iter_mut().enumerate().for_each(fill);
+            slots
+                .par_iter_mut()
+                .zip(cell.par_chunks(chunk))
+                .enumerate()
+                .for_each(fill);
         } else {
-            slots.iter_mut().enumerate().for_each(fill);
+            slots
+                .iter_mut()
+                .zip(cell.chunks(chunk))
+                .enumerate()
+                .for_each(fill);
         }
         &self.order
     }
