@@ -14,7 +14,7 @@ use dpd_ir::SweepOrder;
 /// never kicks with B holds no conservative-force array).
 pub(crate) fn conservative(pairs: &PairTable, params: &Params, kind: &[u16], out: &mut Vec<Vec3>) {
     let add = Conservative::new(pairs.bound(), params, kind, zeroed(out, kind.len()));
-    pairs.visit(SweepOrder::Forward, |pair| add.pair(pair));
+    pairs.visit(SweepOrder::Forward, move |pair| add.pair(pair));
 }
 
 /// `out` as `n` zero vectors.
@@ -27,6 +27,7 @@ pub(crate) fn zeroed(out: &mut Vec<Vec3>, n: usize) -> &mut [Vec3] {
 /// The sum of the conservative forces into per-particle totals, pair by pair: what
 /// [`conservative`] does over a table, and what a fill does run by run
 /// ([`PairTable::collect_then`]), so that both give the same numbers.
+#[derive(Clone, Copy)]
 pub(crate) struct Conservative<'a> {
     out: Disjoint<'a, Vec3>,
     kind: ByPair<'a, u16>,
@@ -86,9 +87,9 @@ pub(crate) fn full(sys: &mut System, stream: u8) {
 #[inline(always)]
 fn full_with<const SHIFTED: bool, V: Virial>(sys: &mut System, stream: u8) -> V {
     let s = Split::of(sys, false, stream);
-    let add = &s.add;
+    let add = s.add;
     s.pairs
-        .visit_sum_noisy(SweepOrder::Forward, s.noise, |pair, z, dvx| {
+        .visit_sum_noisy(SweepOrder::Forward, s.noise, move |pair, z, dvx| {
             add.pair::<SHIFTED, V>(pair, z, dvx)
         })
 }
@@ -100,8 +101,9 @@ fn full_with<const SHIFTED: bool, V: Virial>(sys: &mut System, stream: u8) -> V 
 pub(crate) fn full_while_filling(sys: &mut System, stream: u8) {
     let s = Split::of(sys, true, stream);
     let noise = s.noise.map(|noise| noise.of(Bound::of(s.q)));
-    let forces = |pair: &Pair, z, _| s.add.pair::<false, ()>(pair, z, 0.0);
-    let each = |run: &[Pair]| visit_run(run, None, SweepOrder::Forward, noise, &forces);
+    let add = s.add;
+    let forces = move |pair: &Pair, z, _| add.pair::<false, ()>(pair, z, 0.0);
+    let each = |run: &[Pair]| visit_run(run, None, SweepOrder::Forward, noise, forces);
     s.pairs.collect_then(s.list, s.q, s.bx, s.params, each);
 }
 
@@ -155,6 +157,7 @@ impl<'a> Split<'a> {
 /// The sum of the full DPD forces into per-particle totals, pair by pair: what [`full`] does
 /// over a table, and what a fill does run by run ([`PairTable::collect_then`]), so that both
 /// give the same numbers.
+#[derive(Clone, Copy)]
 pub(crate) struct Full<'a> {
     out: Disjoint<'a, Vec3>,
     p: ByPair<'a, Vec3>,

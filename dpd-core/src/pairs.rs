@@ -317,7 +317,7 @@ impl PairTable {
     /// (`Reverse`). Runs of one colour go to different threads when the grid is coloured and
     /// the table is large; they touch disjoint particles, so the result is the same as the
     /// sequential visit on any number of threads.
-    pub(crate) fn visit(&self, order: SweepOrder, visit: impl Fn(&Pair) + Sync) {
+    pub(crate) fn visit(&self, order: SweepOrder, visit: impl Fn(&Pair) + Sync + Copy) {
         self.visit_sum(order, visit)
     }
 
@@ -327,9 +327,9 @@ impl PairTable {
     pub(crate) fn visit_sum<T: Virial>(
         &self,
         order: SweepOrder,
-        visit: impl Fn(&Pair) -> T + Sync,
+        visit: impl Fn(&Pair) -> T + Sync + Copy,
     ) -> T {
-        self.visit_sum_noisy(order, None, |p, _, _| visit(p))
+        self.visit_sum_noisy(order, None, move |p, _, _| visit(p))
     }
 
     /// [`PairTable::visit_sum`] handing each pair its standard normal of `noise` (0 with
@@ -342,13 +342,13 @@ impl PairTable {
         &self,
         order: SweepOrder,
         noise: Option<Noise>,
-        visit: impl Fn(&Pair, f64, f64) -> T + Sync,
+        visit: impl Fn(&Pair, f64, f64) -> T + Sync + Copy,
     ) -> T {
         let shifts = self.shifts();
         let noise = noise.map(|noise| noise.of(self.bound()));
         self.visit_runs(order, |range, pairs| {
             let dvx = shifts.map(|s| &s[range][..pairs.len()]);
-            visit_run(pairs, dvx, order, noise, &visit)
+            visit_run(pairs, dvx, order, noise, visit)
         })
     }
 
@@ -399,10 +399,13 @@ pub(crate) fn visit_run<T: Virial>(
     dvx: Option<&[f64]>,
     order: SweepOrder,
     noise: Option<Drawn>,
-    visit: &impl Fn(&Pair, f64, f64) -> T,
+    visit: impl Fn(&Pair, f64, f64) -> T + Copy,
 ) -> T {
     NORMALS.with_borrow_mut(|normals| {
-        with_avx2(|| {
+        // Everything the loop reads is moved in, so that the compiler sees that the updates
+        // (stores through raw pointers) do not change it and keeps it in registers: behind
+        // references it was loaded again for every pair.
+        with_avx2(move || {
             let n = pairs.len();
             let z = noise.map(|Drawn { noise, id }| {
                 normals.resize(n, 0.0);
@@ -411,12 +414,10 @@ pub(crate) fn visit_run<T: Virial>(
                 &normals[..n]
             });
             let dvx = dvx.map(|s| &s[..n]);
+            let reverse = order == SweepOrder::Reverse;
             let mut t = T::default();
             for k in 0..n {
-                let k = match order {
-                    SweepOrder::Forward => k,
-                    SweepOrder::Reverse => n - 1 - k,
-                };
+                let k = if reverse { n - 1 - k } else { k };
                 let (z, dvx) = (z.map_or(0.0, |z| z[k]), dvx.map_or(0.0, |s| s[k]));
                 t = t.add(visit(&pairs[k], z, dvx));
             }
@@ -556,6 +557,16 @@ pub(crate) struct Disjoint<'a, T> {
 }
 
 unsafe impl<T: Send> Sync for Disjoint<'_, T> {}
+
+// A copy is one more handle to the same slice, as a shared reference to it would be; the
+// contract of `get` is the same for every handle.
+impl<T> Clone for Disjoint<'_, T> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<T> Copy for Disjoint<'_, T> {}
 
 impl<'a, T> Disjoint<'a, T> {
     pub(crate) fn new(slice: &'a mut [T]) -> Self {

@@ -32,7 +32,7 @@ fn sweep(
     stream: u8,
     order: SweepOrder,
     conservative_h: f64,
-    update: impl Fn(&PairState) -> (f64, f64) + Sync,
+    update: impl Fn(&PairState) -> (f64, f64) + Sync + Copy,
 ) {
     sys.ensure_pairs();
     let recorded = match (sys.shifted_pairs(), sys.impulses.is_some()) {
@@ -70,7 +70,7 @@ fn sweep_with<const SHIFTED: bool, V: Virial>(
     stream: u8,
     order: SweepOrder,
     conservative_h: f64,
-    update: impl Fn(&PairState) -> (f64, f64) + Sync,
+    update: impl Fn(&PairState) -> (f64, f64) + Sync + Copy,
 ) -> V {
     let System {
         ref mut pairs,
@@ -145,7 +145,7 @@ pub fn ou(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
         order,
         0.0,
         #[inline(always)]
-        |s| {
+        move |s| {
             let em1 = expm1(-gamma * s.pair.wr * s.pair.wr * s.mu * h);
             (em1, ou_std(kbt, s.mu, em1) * s.r)
         },
@@ -168,7 +168,7 @@ pub fn bbk(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
         order,
         0.0,
         #[inline(always)]
-        |s| {
+        move |s| {
             let half_tau_h = 0.5 * gamma * s.pair.wr * s.pair.wr * s.mu * h;
             let kick = 0.5 * sigma * s.pair.wr * s.mu * root_h * s.r;
             let scale = 1.0 / (1.0 + half_tau_h);
@@ -190,7 +190,7 @@ pub fn trotter(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
         order,
         h,
         #[inline(always)]
-        |s| {
+        move |s| {
             let x = gamma * s.pair.wr * s.pair.wr * s.mu * h;
             let em1 = expm1(-x);
             let phi1 = if x == 0.0 { 1.0 } else { -em1 / x };
