@@ -22,6 +22,7 @@ pub mod error;
 pub mod flow;
 pub mod force;
 pub mod init;
+mod lanes;
 pub mod neighbour;
 pub mod observe;
 pub mod pairs;

@@ -344,11 +344,26 @@ impl PairTable {
         noise: Option<Noise>,
         visit: impl Fn(&Pair, f64, f64) -> T + Sync + Copy,
     ) -> T {
+        self.visit_sum_prepared::<1, f64, T>(order, noise, |_, z| z, visit)
+    }
+
+    /// [`PairTable::visit_sum_noisy`] with a preparation: `prepare(pairs, z)` computes what the
+    /// visits of `B` consecutive pairs (in visiting order) need from the pairs and their
+    /// normals alone, all `B` at once so that it may be vectorised, and `visit(pair, p, dvx)`
+    /// gets each pair's result `p`. A run's last block is padded with its last pair, whose
+    /// extra results are dropped. `prepare` must not read what the visits change.
+    pub(crate) fn visit_sum_prepared<const B: usize, P: Copy, T: Virial>(
+        &self,
+        order: SweepOrder,
+        noise: Option<Noise>,
+        prepare: impl Fn([&Pair; B], [f64; B]) -> [P; B] + Sync + Copy,
+        visit: impl Fn(&Pair, P, f64) -> T + Sync + Copy,
+    ) -> T {
         let shifts = self.shifts();
         let noise = noise.map(|noise| noise.of(self.bound()));
         self.visit_runs(order, |range, pairs| {
             let dvx = shifts.map(|s| &s[range][..pairs.len()]);
-            visit_run(pairs, dvx, order, noise, visit)
+            visit_run_prepared(pairs, dvx, order, noise, prepare, visit)
         })
     }
 
@@ -401,29 +416,100 @@ pub(crate) fn visit_run<T: Virial>(
     noise: Option<Drawn>,
     visit: impl Fn(&Pair, f64, f64) -> T + Copy,
 ) -> T {
+    visit_run_prepared::<1, f64, T>(pairs, dvx, order, noise, |_, z| z, visit)
+}
+
+/// [`visit_run`] with the preparation of [`PairTable::visit_sum_prepared`].
+#[inline(always)]
+fn visit_run_prepared<const B: usize, P: Copy, T: Virial>(
+    pairs: &[Pair],
+    dvx: Option<&[f64]>,
+    order: SweepOrder,
+    noise: Option<Drawn>,
+    prepare: impl Fn([&Pair; B], [f64; B]) -> [P; B] + Copy,
+    visit: impl Fn(&Pair, P, f64) -> T + Copy,
+) -> T {
     NORMALS.with_borrow_mut(|normals| {
         // Everything the loop reads is moved in, so that the compiler sees that the updates
         // (stores through raw pointers) do not change it and keeps it in registers: behind
         // references it was loaded again for every pair.
-        with_avx2(move || {
-            let n = pairs.len();
-            let z = noise.map(|Drawn { noise, id }| {
-                normals.resize(n, 0.0);
-                let key = |k: usize| (id.get(pairs[k].i), id.get(pairs[k].j));
-                pair_normals(noise.seed, noise.step, noise.stream, key, &mut normals[..n]);
-                &normals[..n]
-            });
-            let dvx = dvx.map(|s| &s[..n]);
-            let reverse = order == SweepOrder::Reverse;
-            let mut t = T::default();
-            for k in 0..n {
-                let k = if reverse { n - 1 - k } else { k };
-                let (z, dvx) = (z.map_or(0.0, |z| z[k]), dvx.map_or(0.0, |s| s[k]));
-                t = t.add(visit(&pairs[k], z, dvx));
-            }
-            t
-        })
+        with_avx2(
+            #[inline(always)]
+            move || {
+                let n = pairs.len();
+                let z = noise.map(|Drawn { noise, id }| {
+                    normals.resize(n, 0.0);
+                    let key = |k: usize| (id.get(pairs[k].i), id.get(pairs[k].j));
+                    pair_normals(noise.seed, noise.step, noise.stream, key, &mut normals[..n]);
+                    &normals[..n]
+                });
+                let dvx = dvx.map(|s| &s[..n]);
+                let run = Run {
+                    pairs,
+                    z,
+                    dvx,
+                    reverse: order == SweepOrder::Reverse,
+                };
+                let whole = n - n % B;
+                let mut t = T::default();
+                for start in (0..whole).step_by(B) {
+                    t = run.block(t, start, true, prepare, visit);
+                }
+                if whole < n {
+                    t = run.block(t, whole, false, prepare, visit);
+                }
+                t
+            },
+        )
     })
+}
+
+/// One run of pairs being visited: its pairs, their normals and velocity shifts (if any), and
+/// whether it is visited last to first.
+#[derive(Clone, Copy)]
+struct Run<'a> {
+    pairs: &'a [Pair],
+    z: Option<&'a [f64]>,
+    dvx: Option<&'a [f64]>,
+    reverse: bool,
+}
+
+impl Run<'_> {
+    /// Add to `t` the visits of the `B` pairs from position `start` in visiting order,
+    /// prepared together; past the end of the run (only when not `whole`) the last pair is
+    /// repeated for `prepare`, and not visited.
+    #[inline(always)]
+    fn block<const B: usize, P: Copy, T: Virial>(
+        self,
+        mut t: T,
+        start: usize,
+        whole: bool,
+        prepare: impl Fn([&Pair; B], [f64; B]) -> [P; B],
+        visit: impl Fn(&Pair, P, f64) -> T,
+    ) -> T {
+        let n = self.pairs.len();
+        let ks: [usize; B] = std::array::from_fn(|l| {
+            let m = if whole {
+                start + l
+            } else {
+                (start + l).min(n - 1)
+            };
+            if self.reverse {
+                n - 1 - m
+            } else {
+                m
+            }
+        });
+        let zs = ks.map(|k| self.z.map_or(0.0, |z| z[k]));
+        let prepared = prepare(ks.map(|k| &self.pairs[k]), zs);
+        for (l, (k, p)) in ks.into_iter().zip(prepared).enumerate() {
+            if whole || start + l < n {
+                let dvx = self.dvx.map_or(0.0, |s| s[k]);
+                t = t.add(visit(&self.pairs[k], p, dvx));
+            }
+        }
+        t
+    }
 }
 
 /// [`Noise`] with its ids checked against a table's bound, as [`visit_run`] draws from it.

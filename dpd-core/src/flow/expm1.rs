@@ -10,9 +10,17 @@
 //! C library. ABOBA, `step_timing 24000 100 1 0.0 aboba`, alternating builds: about 3 %
 //! faster per step.
 
+#[cfg(target_arch = "x86_64")]
+use crate::lanes::F64x4;
+use crate::lanes::Lanes;
+
 /// `ln 2` split so that `k * LN2_HI` is exact for `|k| < 2^20`, and the remainder.
 const LN2_HI: f64 = f64::from_bits(0x3fe6_2e42_fee0_0000);
 const LN2_LO: f64 = f64::from_bits(0x3dea_39ef_3579_3c76);
+
+/// `2^52 + 1023`: an integer `k` in `-1023..=1024` added to it is exact, with `1023 + k` in the
+/// low mantissa bits.
+const EXPONENT_BIAS: f64 = 4_503_599_627_371_519.0;
 
 /// `1/n!` for `n = 2..=13`.
 const TAYLOR: [f64; 12] = [
@@ -34,13 +42,13 @@ const TAYLOR: [f64; 12] = [
 /// polynomial is evaluated by Estrin's scheme (pairs, then powers `r^2`, `r^4`, `r^8`), whose
 /// dependency chain is a third of Horner's.
 #[inline(always)]
-fn small(r: f64) -> f64 {
-    let c = &TAYLOR;
+fn small<L: Lanes>(r: L) -> L {
+    let c = |k: usize| L::splat(TAYLOR[k]);
     let r2 = r * r;
     let r4 = r2 * r2;
     let r8 = r4 * r4;
     // Written out: `[T; N]::map` is not always inlined (it was a call in the ABOBA profile).
-    let pair = |k: usize| c[k] + c[k + 1] * r;
+    let pair = |k: usize| c(k) + c(k + 1) * r;
     let b0 = pair(0) + pair(2) * r2;
     let b1 = pair(4) + pair(6) * r2;
     let b2 = pair(8) + pair(10) * r2;
@@ -65,6 +73,22 @@ pub(crate) fn expm1(x: f64) -> f64 {
     let r = (x - kf * LN2_HI) - kf * LN2_LO;
     let two_k = f64::from_bits(((1023 + k) as u64) << 52);
     two_k * small(r) + (two_k - 1.0)
+}
+
+/// [`expm1`] of four arguments in `[-40, 0]` (checked by the caller: [`F64x4::within`]), bit
+/// for bit. Its two branches there become a select: one polynomial, on `x` itself or on its
+/// reduced argument. `k` and `2^k` are computed in floating point: `trunc` is the conversion's
+/// truncation (`+ 0` turns its -0 into the conversion's 0), and adding `2^52 + 1023` leaves
+/// `1023 + k` in the low bits of the sum, which a shift moves to the exponent.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+pub(crate) fn expm1_within(x: F64x4) -> F64x4 {
+    let splat = F64x4::splat;
+    let kf = (x * splat(std::f64::consts::LOG2_E) - splat(0.5)).trunc() + splat(0.0);
+    let r = (x - kf * splat(LN2_HI)) - kf * splat(LN2_LO);
+    let two_k = (kf + splat(EXPONENT_BIAS)).shift_bits_left::<52>();
+    let p = small(x.above_select(-0.25, x, r));
+    x.above_select(-0.25, p, two_k * p + (two_k - splat(1.0)))
 }
 
 #[cfg(test)]
@@ -103,6 +127,43 @@ mod tests {
         }
         println!("worst: {} ulp at x = {:e}", worst.0, worst.1);
         assert!(worst.0 <= 2, "{} ulp at x = {:e}", worst.0, worst.1);
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn four_lanes_equal_the_scalar_function_bit_for_bit() {
+        if !std::arch::is_x86_feature_detected!("avx2") {
+            return;
+        }
+        // Both branches, their boundary and the ends of the range.
+        let mut args = vec![
+            0.0,
+            -0.0,
+            -0.25,
+            -0.25f64.next_down(),
+            -0.25f64.next_up(),
+            -40.0,
+        ];
+        let mut x = -1e-300;
+        while x > -40.0 {
+            args.extend([x, x * 1.37, x * 2.9]);
+            x *= 1.003;
+        }
+        args.extend((0..97_000).map(|k| -(k as f64) * 4.1e-4));
+        for lanes in args.chunks(4) {
+            let mut lanes: Vec<f64> = lanes.iter().map(|x| x.max(-40.0)).collect();
+            lanes.resize(4, -1.0);
+            let lanes: [f64; 4] = lanes.try_into().unwrap();
+            // SAFETY: detected above.
+            let x = unsafe { F64x4::new(lanes) };
+            assert!(x.within(-40.0, 0.0));
+            let want = lanes.map(|x| expm1(x).to_bits());
+            assert_eq!(
+                expm1_within(x).to_array().map(f64::to_bits),
+                want,
+                "{lanes:?}"
+            );
+        }
     }
 
     #[test]

@@ -1,0 +1,208 @@
+//! Arithmetic on one `f64` or on four in an AVX2 register ([`F64x4`]), so that a formula is
+//! written once for both and computes the same numbers in every lane: each operation is one
+//! IEEE operation, rounded once, and none is contracted into a multiply-add. Written by hand:
+//! the portable SIMD of the standard library is not stable, and the SIMD crates of the
+//! ecosystem (`wide`) choose the instruction set when the crate is compiled, while this binary
+//! chooses at run time; the pair sweeps need only these few operations. Where the CPU has no
+//! AVX2 the same formulas run on `f64`.
+//!
+//! The operations are `#[inline(always)]` functions around the intrinsics. They become single
+//! instructions only where they are inlined into a function compiled with AVX2 (the pair
+//! loops inside [`crate::avx2::with_avx2`]); the intrinsics inline there because the caller has
+//! the feature.
+
+use std::ops::{Add, Div, Mul, Neg, Sub};
+
+/// One `f64` or a vector of them.
+pub(crate) trait Lanes:
+    Copy
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+{
+    /// `x` in every lane.
+    fn splat(x: f64) -> Self;
+    /// `max(x, 0)` per lane as `f64::max` gives it (0 for NaN).
+    fn max_zero(self) -> Self;
+    fn sqrt(self) -> Self;
+}
+
+impl Lanes for f64 {
+    #[inline(always)]
+    fn splat(x: f64) -> Self {
+        x
+    }
+    #[inline(always)]
+    fn max_zero(self) -> Self {
+        self.max(0.0)
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        f64::sqrt(self)
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+pub(crate) use x86::F64x4;
+
+#[cfg(target_arch = "x86_64")]
+mod x86 {
+    use super::Lanes;
+    use std::arch::x86_64::*;
+    use std::ops::{Add, Div, Mul, Neg, Sub};
+
+    /// Four `f64` in an AVX2 register. A value exists only on a CPU with AVX2
+    /// ([`F64x4::new`] is `unsafe` for that reason), so its operations are safe.
+    #[derive(Clone, Copy)]
+    pub(crate) struct F64x4(__m256d);
+
+    impl F64x4 {
+        /// # Safety
+        /// The CPU must support AVX2.
+        #[inline(always)]
+        pub(crate) unsafe fn new(x: [f64; 4]) -> Self {
+            // SAFETY: AVX is part of AVX2 (the caller's contract); the load is unaligned.
+            F64x4(unsafe { _mm256_loadu_pd(x.as_ptr()) })
+        }
+
+        #[inline(always)]
+        pub(crate) fn to_array(self) -> [f64; 4] {
+            let mut out = [0.0; 4];
+            // SAFETY: a value exists only with AVX2 (`new`); the store is unaligned.
+            unsafe { _mm256_storeu_pd(out.as_mut_ptr(), self.0) };
+            out
+        }
+
+        /// Whether every lane lies in `lo..=hi` (false for NaN).
+        #[inline(always)]
+        pub(crate) fn within(self, lo: f64, hi: f64) -> bool {
+            // SAFETY: as for `to_array`.
+            unsafe {
+                let above = _mm256_cmp_pd::<_CMP_GE_OQ>(self.0, _mm256_set1_pd(lo));
+                let below = _mm256_cmp_pd::<_CMP_LE_OQ>(self.0, _mm256_set1_pd(hi));
+                _mm256_movemask_pd(_mm256_and_pd(above, below)) == 0b1111
+            }
+        }
+
+        /// Per lane `if self > x { yes } else { no }`.
+        #[inline(always)]
+        pub(crate) fn above_select(self, x: f64, yes: Self, no: Self) -> Self {
+            // SAFETY: as for `to_array`.
+            unsafe {
+                let mask = _mm256_cmp_pd::<_CMP_GT_OQ>(self.0, _mm256_set1_pd(x));
+                F64x4(_mm256_blendv_pd(no.0, yes.0, mask))
+            }
+        }
+
+        /// Per lane `trunc(x)`, rounded towards zero.
+        #[inline(always)]
+        pub(crate) fn trunc(self) -> Self {
+            // SAFETY: as for `to_array`.
+            F64x4(unsafe { _mm256_round_pd::<{ _MM_FROUND_TO_ZERO | _MM_FROUND_NO_EXC }>(self.0) })
+        }
+
+        /// Per lane the bits shifted left by `N`, as `f64::from_bits(x.to_bits() << N)`.
+        #[inline(always)]
+        pub(crate) fn shift_bits_left<const N: i32>(self) -> Self {
+            // SAFETY: as for `to_array`.
+            unsafe {
+                F64x4(_mm256_castsi256_pd(_mm256_slli_epi64::<N>(
+                    _mm256_castpd_si256(self.0),
+                )))
+            }
+        }
+    }
+
+    /// The binary operators, one intrinsic per lane-wise IEEE operation.
+    macro_rules! binary {
+        ($($trait:ident $method:ident $intrinsic:ident),*) => {$(
+            impl $trait for F64x4 {
+                type Output = Self;
+                #[inline(always)]
+                fn $method(self, other: Self) -> Self {
+                    // SAFETY: a value exists only with AVX2 (`new`).
+                    F64x4(unsafe { $intrinsic(self.0, other.0) })
+                }
+            }
+        )*};
+    }
+    binary!(Add add _mm256_add_pd, Sub sub _mm256_sub_pd, Mul mul _mm256_mul_pd, Div div _mm256_div_pd);
+
+    impl Neg for F64x4 {
+        type Output = Self;
+        /// The sign bit flipped, as `-x` on `f64`.
+        #[inline(always)]
+        fn neg(self) -> Self {
+            // SAFETY: as for the binary operators.
+            F64x4(unsafe { _mm256_xor_pd(self.0, _mm256_set1_pd(-0.0)) })
+        }
+    }
+
+    impl Lanes for F64x4 {
+        #[inline(always)]
+        fn splat(x: f64) -> Self {
+            // Only called on values that exist, hence with AVX2; `set1` needs nothing more.
+            // SAFETY: see above.
+            F64x4(unsafe { _mm256_set1_pd(x) })
+        }
+        #[inline(always)]
+        fn max_zero(self) -> Self {
+            // `maxpd` returns its second operand when either is NaN: 0, as `f64::max`.
+            // SAFETY: as for the binary operators.
+            F64x4(unsafe { _mm256_max_pd(self.0, _mm256_setzero_pd()) })
+        }
+        #[inline(always)]
+        fn sqrt(self) -> Self {
+            // SAFETY: as for the binary operators.
+            F64x4(unsafe { _mm256_sqrt_pd(self.0) })
+        }
+    }
+
+    #[cfg(test)]
+    mod tests {
+        use super::*;
+
+        #[test]
+        fn every_operation_is_the_scalar_one_in_every_lane() {
+            if !std::arch::is_x86_feature_detected!("avx2") {
+                return;
+            }
+            let a = [1.5, -0.0, f64::NAN, 3.0e-310];
+            let b = [-2.25, 0.0, 7.0, f64::INFINITY];
+            // SAFETY: detected above.
+            let (x, y) = unsafe { (F64x4::new(a), F64x4::new(b)) };
+            // Bits, but any NaN as one: Rust leaves NaN payloads and signs unspecified (a
+            // constant-folded 0 / 0 and the CPU's differ in the sign).
+            let bits = |x: f64| {
+                if x.is_nan() {
+                    f64::NAN.to_bits()
+                } else {
+                    x.to_bits()
+                }
+            };
+            let lanes = |v: F64x4| v.to_array().map(bits);
+            let each = |f: fn(f64, f64) -> f64| std::array::from_fn(|l| bits(f(a[l], b[l])));
+            assert_eq!(lanes(x + y), each(|a, b| a + b));
+            assert_eq!(lanes(x - y), each(|a, b| a - b));
+            assert_eq!(lanes(x * y), each(|a, b| a * b));
+            assert_eq!(lanes(x / y), each(|a, b| a / b));
+            assert_eq!(lanes(-x), each(|a, _| -a));
+            assert_eq!(lanes(x.max_zero()), each(|a, _| a.max(0.0)));
+            assert_eq!(lanes(x.sqrt()), each(|a, _| a.sqrt()));
+            assert_eq!(lanes(x.trunc()), each(|a, _| a.trunc()));
+            assert_eq!(
+                lanes(x.shift_bits_left::<52>()),
+                each(|a, _| f64::from_bits(a.to_bits() << 52))
+            );
+            assert_eq!(
+                lanes(x.above_select(0.0, x, y)),
+                each(|a, b| if a > 0.0 { a } else { b })
+            );
+            assert!(!x.within(-10.0, 10.0));
+            // SAFETY: detected above.
+            assert!(unsafe { F64x4::new([0.0, -1.0, -40.0, -0.5]) }.within(-40.0, 0.0));
+        }
+    }
+}
