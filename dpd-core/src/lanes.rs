@@ -22,8 +22,9 @@ pub(crate) trait Lanes:
     + Div<Output = Self>
     + Neg<Output = Self>
 {
-    /// `x` in every lane.
-    fn splat(x: f64) -> Self;
+    /// `x` in every lane. `self` only vouches that such a value can exist (for [`F64x4`]:
+    /// that the CPU has AVX2); its lanes are not read.
+    fn splat(self, x: f64) -> Self;
     /// `max(x, 0)` per lane as `f64::max` gives it (0 for NaN).
     fn max_zero(self) -> Self;
     fn sqrt(self) -> Self;
@@ -31,7 +32,7 @@ pub(crate) trait Lanes:
 
 impl Lanes for f64 {
     #[inline(always)]
-    fn splat(x: f64) -> Self {
+    fn splat(self, x: f64) -> Self {
         x
     }
     #[inline(always)]
@@ -142,9 +143,8 @@ mod x86 {
 
     impl Lanes for F64x4 {
         #[inline(always)]
-        fn splat(x: f64) -> Self {
-            // Only called on values that exist, hence with AVX2; `set1` needs nothing more.
-            // SAFETY: see above.
+        fn splat(self, x: f64) -> Self {
+            // SAFETY: `self` exists, so the CPU has AVX2 (`new`).
             F64x4(unsafe { _mm256_set1_pd(x) })
         }
         #[inline(always)]

@@ -43,7 +43,7 @@ const TAYLOR: [f64; 12] = [
 /// dependency chain is a third of Horner's.
 #[inline(always)]
 fn small<L: Lanes>(r: L) -> L {
-    let c = |k: usize| L::splat(TAYLOR[k]);
+    let c = |k: usize| r.splat(TAYLOR[k]);
     let r2 = r * r;
     let r4 = r2 * r2;
     let r8 = r4 * r4;
@@ -83,7 +83,7 @@ pub(crate) fn expm1(x: f64) -> f64 {
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
 pub(crate) fn expm1_within(x: F64x4) -> F64x4 {
-    let splat = F64x4::splat;
+    let splat = |c| x.splat(c);
     let kf = (x * splat(std::f64::consts::LOG2_E) - splat(0.5)).trunc() + splat(0.0);
     let r = (x - kf * splat(LN2_HI)) - kf * splat(LN2_LO);
     let two_k = (kf + splat(EXPONENT_BIAS)).shift_bits_left::<52>();

@@ -138,7 +138,7 @@ fn sweep_with<const SHIFTED: bool, V: Virial, const B: usize>(
 /// `(slope, offset) / mu` as a [`Change`] holds them.
 #[inline(always)]
 fn per_mass<L: Lanes>(slope: L, offset: L, mu: L) -> (L, L) {
-    let reduced = L::splat(1.0) / mu;
+    let reduced = mu.splat(1.0) / mu;
     (slope * reduced, offset * reduced)
 }
 
@@ -148,7 +148,7 @@ fn per_mass<L: Lanes>(slope: L, offset: L, mu: L) -> (L, L) {
 /// `tau`; `1 - exp(-2x) = -em1 (2 + em1)` has no cancellation. Zero for `x <= 0`.
 #[inline(always)]
 fn ou_std<L: Lanes>(kbt: f64, mu: L, em1: L) -> L {
-    (L::splat(kbt) * mu * -em1 * (L::splat(2.0) + em1))
+    (mu.splat(kbt) * mu * -em1 * (mu.splat(2.0) + em1))
         .max_zero()
         .sqrt()
 }
@@ -156,7 +156,7 @@ fn ou_std<L: Lanes>(kbt: f64, mu: L, em1: L) -> L {
 /// The exponent `-tau h = -gamma w_R^2 mu h` of the O update.
 #[inline(always)]
 fn ou_exponent<L: Lanes>(gamma: f64, h: f64, wr: L, mu: L) -> L {
-    L::splat(-gamma) * wr * wr * mu * L::splat(h)
+    wr.splat(-gamma) * wr * wr * mu * wr.splat(h)
 }
 
 /// Slope and offset per mass of the O update with `em1 = exp(-tau h) - 1` and normal `r`.
