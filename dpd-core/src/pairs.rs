@@ -336,8 +336,8 @@ impl PairTable {
     /// `None`) and its velocity shift (0 without, see [`PairTable::shifts`]). The normals of a
     /// run are drawn just before it is visited, while its pairs are in cache
     /// ([`crate::rng::pair_normals`]); they are the numbers [`crate::rng::pair_normal`]
-    /// gives. `visit` is called from one place only, so that the compiler inlines it into the
-    /// loop over a run.
+    /// gives. `visit` is called from one place only (a block of one pair), so that the compiler
+    /// inlines it into the loop over a run.
     pub(crate) fn visit_sum_noisy<T: Virial>(
         &self,
         order: SweepOrder,
