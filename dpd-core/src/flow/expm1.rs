@@ -20,6 +20,7 @@ const LN2_LO: f64 = f64::from_bits(0x3dea_39ef_3579_3c76);
 
 /// `2^52 + 1023`: an integer `k` in `-1023..=1024` added to it is exact, with `1023 + k` in the
 /// low mantissa bits.
+#[cfg(target_arch = "x86_64")]
 const EXPONENT_BIAS: f64 = 4_503_599_627_371_519.0;
 
 /// `1/n!` for `n = 2..=13`.
