@@ -59,12 +59,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .skin(0.0)
         .build()?;
     let dt = sys.dt();
+    let timed = |name: &str| !args.only_o || name == O;
     let seconds = pool.install(|| -> Result<[f64; 5], dpd::BlowUp> {
         sys.advance(&Aboba, 30)?;
         let mut seconds = [0.0; 5];
         for _ in 0..args.steps {
             for ((name, phase), total) in PHASES.iter().zip(&mut seconds) {
-                if args.only_o && *name != O {
+                if !timed(name) {
                     continue;
                 }
                 let start = Instant::now();
@@ -75,11 +76,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         Ok(seconds)
     })?;
     let ms = |s: f64| s / f64::from(args.steps) * 1e3;
-    let run = |name: &str| !args.only_o || name == O;
     for ((name, _), s) in PHASES
         .iter()
         .zip(seconds)
-        .filter(|((name, _), _)| run(name))
+        .filter(|((name, _), _)| timed(name))
     {
         println!(
             "{{\"threads\": {}, \"n\": {}, \"phase\": \"{name}\", \"ms_per_step\": {:.2}}}",
