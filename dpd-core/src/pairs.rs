@@ -450,13 +450,20 @@ fn visit_run_prepared<const B: usize, P: Copy, T: Virial>(
                     dvx,
                     reverse: order == SweepOrder::Reverse,
                 };
-                let whole = n - n % B;
+                // Each block is prepared one block ahead of its visits, so that the
+                // preparation (independent of the visits) runs while the previous block's
+                // chain of momentum updates does, instead of after it.
                 let mut t = T::default();
-                for start in (0..whole).step_by(B) {
-                    t = run.block(t, start, true, prepare, visit);
+                if n == 0 {
+                    return t;
                 }
-                if whole < n {
-                    t = run.block(t, whole, false, prepare, visit);
+                let mut next = run.prepare(0, prepare);
+                for start in (0..n).step_by(B) {
+                    let current = next;
+                    if start + B < n {
+                        next = run.prepare(start + B, prepare);
+                    }
+                    t = run.visit(t, current, visit);
                 }
                 t
             },
@@ -475,35 +482,37 @@ struct Run<'a> {
 }
 
 impl Run<'_> {
-    /// Add to `t` the visits of the `B` pairs from position `start` in visiting order,
-    /// prepared together; past the end of the run (only when not `whole`) the last pair is
-    /// repeated for `prepare`, and not visited.
+    /// The `B` pairs from position `start` in visiting order, prepared together: their
+    /// positions in the run and what `prepare` made of them. Past the end of the run the last
+    /// pair is repeated for `prepare`, and its position is `None`, so that it is not visited.
     #[inline(always)]
-    fn block<const B: usize, P: Copy, T: Virial>(
+    fn prepare<const B: usize, P: Copy>(
         self,
-        mut t: T,
         start: usize,
-        whole: bool,
         prepare: impl Fn([&Pair; B], [f64; B]) -> [P; B],
-        visit: impl Fn(&Pair, P, f64) -> T,
-    ) -> T {
+    ) -> [(Option<usize>, P); B] {
         let n = self.pairs.len();
-        let ks: [usize; B] = std::array::from_fn(|l| {
-            let m = if whole {
-                start + l
-            } else {
-                (start + l).min(n - 1)
-            };
-            if self.reverse {
-                n - 1 - m
-            } else {
-                m
-            }
-        });
+        let at = |m: usize| if self.reverse { n - 1 - m } else { m };
+        let ks: [usize; B] = if start + B <= n {
+            std::array::from_fn(|l| at(start + l))
+        } else {
+            std::array::from_fn(|l| at((start + l).min(n - 1)))
+        };
         let zs = ks.map(|k| self.z.map_or(0.0, |z| z[k]));
         let prepared = prepare(ks.map(|k| &self.pairs[k]), zs);
-        for (l, (k, p)) in ks.into_iter().zip(prepared).enumerate() {
-            if whole || start + l < n {
+        std::array::from_fn(|l| ((start + l < n).then_some(ks[l]), prepared[l]))
+    }
+
+    /// Add to `t` the visits of a block made by [`Run::prepare`], in order.
+    #[inline(always)]
+    fn visit<const B: usize, P: Copy, T: Virial>(
+        self,
+        mut t: T,
+        block: [(Option<usize>, P); B],
+        visit: impl Fn(&Pair, P, f64) -> T,
+    ) -> T {
+        for (k, p) in block {
+            if let Some(k) = k {
                 let dvx = self.dvx.map_or(0.0, |s| s[k]);
                 t = t.add(visit(&self.pairs[k], p, dvx));
             }
@@ -686,5 +695,47 @@ impl<'a, T> Disjoint<'a, T> {
         // SAFETY: below the table's particle count, which `Bound::write` checked against the
         // length; exclusivity is the caller's contract.
         unsafe { &mut *self.ptr.add(i as usize) }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The pairs (by `i`) that [`visit_run_prepared`] visits, in order, each with the value
+    /// its preparation made for it.
+    fn visited<const B: usize>(n: u32, order: SweepOrder) -> Vec<(u32, u32)> {
+        let pairs: Vec<Pair> = (0..n)
+            .map(|i| Pair {
+                i,
+                j: n + i,
+                e: Vec3::x(),
+                w: 0.5,
+                wr: 0.5,
+            })
+            .collect();
+        let seen = RefCell::new(Vec::new());
+        let seen_ref = &seen;
+        visit_run_prepared::<B, u32, ()>(
+            &pairs,
+            None,
+            order,
+            None,
+            |block: [&Pair; B], _| block.map(|p| 10 * p.i),
+            move |pair, prepared, _| seen_ref.borrow_mut().push((pair.i, prepared)),
+        );
+        seen.into_inner()
+    }
+
+    #[test]
+    fn blocks_visit_each_pair_once_in_order_with_its_preparation() {
+        for n in 0..10 {
+            let forward: Vec<(u32, u32)> = (0..n).map(|i| (i, 10 * i)).collect();
+            let reverse: Vec<(u32, u32)> = forward.iter().rev().copied().collect();
+            assert_eq!(visited::<1>(n, SweepOrder::Forward), forward, "n = {n}");
+            assert_eq!(visited::<4>(n, SweepOrder::Forward), forward, "n = {n}");
+            assert_eq!(visited::<1>(n, SweepOrder::Reverse), reverse, "n = {n}");
+            assert_eq!(visited::<4>(n, SweepOrder::Reverse), reverse, "n = {n}");
+        }
     }
 }
