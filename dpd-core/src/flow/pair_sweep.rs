@@ -1,31 +1,35 @@
 use super::expm1::expm1;
 #[cfg(target_arch = "x86_64")]
 use super::expm1::expm1_within;
-#[cfg(target_arch = "x86_64")]
-use crate::lanes::F64x4;
 use crate::lanes::Lanes;
+#[cfg(target_arch = "x86_64")]
+use crate::lanes::{F64x4, F64x4x2, Vector};
 use crate::pairs::{ByPair, Noise, Pair, Virial};
 use crate::params::Repulsion;
 use crate::system::System;
 use crate::Tensor;
 use dpd_ir::SweepOrder;
 
-/// What a pair update sees: inverse reduced mass `mu = 1/m_i + 1/m_j`, the pair, one standard
-/// normal `r`, and on request its repulsion `a_ij` ([`PairState::a`]).
+/// What a pair update needs besides the pair and its normal: the particles' inverse masses,
+/// and on request their repulsion `a_ij` ([`Particles::a`]).
 #[derive(Clone, Copy)]
-struct PairState<'a> {
-    mu: f64,
-    pair: &'a Pair,
-    r: f64,
+struct Particles<'a> {
+    inv_mass: ByPair<'a, f64>,
     repulsion: Repulsion<'a>,
     kind: ByPair<'a, u16>,
 }
 
-impl PairState<'_> {
+impl Particles<'_> {
+    /// The inverse reduced mass `mu = 1/m_i + 1/m_j` of the pair.
+    #[inline(always)]
+    fn mu(self, pair: &Pair) -> f64 {
+        self.inv_mass.get(pair.i) + self.inv_mass.get(pair.j)
+    }
+
     /// The repulsion `a_ij` of the pair's types.
     #[inline(always)]
-    fn a(&self) -> f64 {
-        self.repulsion.of_pair(self.kind, self.pair.i, self.pair.j)
+    fn a(self, pair: &Pair) -> f64 {
+        self.repulsion.of_pair(self.kind, pair.i, pair.j)
     }
 }
 
@@ -40,49 +44,47 @@ struct Change {
     conservative: f64,
 }
 
-/// Visit the interacting pairs successively in `order`; `update` returns the [`Change`] of
-/// each of `B` consecutive pairs at once (so that it may be vectorised), for `u` with the
-/// image velocity across a sliding boundary, applied as `p_i += du/mu e`, `p_j -= du/mu e`.
-/// Slope and offset come from the pair's geometry and noise alone, so that the chain from one
-/// update of a particle to the next (read `u`, write momenta) is a few multiply-adds, and the
-/// updates of a block are computed before its pairs are visited. The flows below mark
-/// `update` `#[inline(always)]`: left to itself the compiler made it a function called per
-/// pair (ABOBA about 2-3 % dearer per step).
+/// Visit the interacting pairs successively in `order`, each run of the table after
+/// `changes(particles, pairs, z, out)` has pushed the [`Change`] of each of its pairs (normals
+/// `z`) onto `out`, for `u` with the image velocity across a sliding boundary, applied as
+/// `p_i += du/mu e`, `p_j -= du/mu e`. Slope and offset come from the pair's geometry and
+/// noise alone, so that they are computed in a loop of their own (vectorised where the flow
+/// does it) and the chain from one update of a particle to the next (read `u`, write momenta)
+/// is a few multiply-adds.
 ///
 /// When the system records pair impulses for the stress, the dissipative and random part of
 /// each pair's impulse, `du/mu` less the conservative impulse, is added as a virial. The shear
 /// and recording switches are resolved here, once per sweep, not per pair.
 #[inline(always)]
-fn sweep<const B: usize>(
-    sys: &mut System,
-    stream: u8,
-    order: SweepOrder,
-    update: impl Fn([PairState; B]) -> [Change; B] + Sync + Copy,
-) {
+fn sweep(sys: &mut System, stream: u8, order: SweepOrder, changes: impl Changes) {
     sys.ensure_pairs();
     let recorded = match (sys.shifted_pairs(), sys.impulses.is_some()) {
         (false, false) => {
-            sweep_with::<false, (), B>(sys, stream, order, update);
+            sweep_with::<false, ()>(sys, stream, order, changes);
             None
         }
         (true, false) => {
-            sweep_with::<true, (), B>(sys, stream, order, update);
+            sweep_with::<true, ()>(sys, stream, order, changes);
             None
         }
-        (false, true) => Some(sweep_with::<false, Tensor, B>(sys, stream, order, update)),
-        (true, true) => Some(sweep_with::<true, Tensor, B>(sys, stream, order, update)),
+        (false, true) => Some(sweep_with::<false, Tensor>(sys, stream, order, changes)),
+        (true, true) => Some(sweep_with::<true, Tensor>(sys, stream, order, changes)),
     };
     if let (Some(impulses), Some(virial)) = (&mut sys.impulses, recorded) {
         impulses.add(virial);
     }
 }
 
+/// How a flow computes the [`Change`]s of a run ([`sweep`]).
+trait Changes: Fn(Particles, &[Pair], &[f64], &mut Vec<Change>) + Sync + Copy {}
+impl<F: Fn(Particles, &[Pair], &[f64], &mut Vec<Change>) + Sync + Copy> Changes for F {}
+
 #[inline(always)]
-fn sweep_with<const SHIFTED: bool, V: Virial, const B: usize>(
+fn sweep_with<const SHIFTED: bool, V: Virial>(
     sys: &mut System,
     stream: u8,
     order: SweepOrder,
-    update: impl Fn([PairState; B]) -> [Change; B] + Sync + Copy,
+    changes: impl Changes,
 ) -> V {
     let System {
         ref mut pairs,
@@ -102,36 +104,34 @@ fn sweep_with<const SHIFTED: bool, V: Virial, const B: usize>(
         id,
     });
     let p = pairs.write(p);
-    let (inv_mass, kind) = (pairs.read(inv_mass), pairs.read(kind));
-    let (repulsion, rc) = (params.repulsion(), params.rc());
-    let visit = move |pair: &Pair, change: Change, dvx| {
-        let (i, j) = (pair.i, pair.j);
-        // SAFETY: `visit` never hands two pairs sharing a particle to different threads, `p`
-        // was made for this table, and the two references are to distinct particles (i != j).
-        let (pi, pj) = unsafe { (p.get_paired(i), p.get_paired(j)) };
-        let (mi, mj) = (inv_mass.get(i), inv_mass.get(j));
-        let u = pair.normal_velocity::<SHIFTED>(*pi * mi, *pj * mj, dvx);
-        let impulse = change.slope * u + change.offset;
-        let dp = impulse * pair.e;
-        *pi += dp;
-        *pj -= dp;
-        V::of(pair, rc, impulse - change.conservative)
+    let inv_mass = pairs.read(inv_mass);
+    let particles = Particles {
+        inv_mass,
+        repulsion: params.repulsion(),
+        kind: pairs.read(kind),
     };
+    let rc = params.rc();
     pairs.visit_sum_prepared(
         order,
         noise,
         #[inline(always)]
-        move |pairs: [&Pair; B], r: [f64; B]| {
-            let states: [PairState; B] = std::array::from_fn(|l| PairState {
-                mu: inv_mass.get(pairs[l].i) + inv_mass.get(pairs[l].j),
-                pair: pairs[l],
-                r: r[l],
-                repulsion,
-                kind,
-            });
-            update(states)
+        move |run: &[Pair], z: &[f64], out: &mut Vec<Change>| changes(particles, run, z, out),
+        // Inlined into both loops that visit (pairs of alternating runs, and the rest).
+        #[inline(always)]
+        move |pair: &Pair, change: Change, dvx| {
+            let (i, j) = (pair.i, pair.j);
+            // SAFETY: `visit` never hands two pairs sharing a particle to different threads,
+            // `p` was made for this table, and the two references are to distinct particles
+            // (i != j).
+            let (pi, pj) = unsafe { (p.get_paired(i), p.get_paired(j)) };
+            let (mi, mj) = (inv_mass.get(i), inv_mass.get(j));
+            let u = pair.normal_velocity::<SHIFTED>(*pi * mi, *pj * mj, dvx);
+            let impulse = change.slope * u + change.offset;
+            let dp = impulse * pair.e;
+            *pi += dp;
+            *pj -= dp;
+            V::of(pair, rc, impulse - change.conservative)
         },
-        visit,
     )
 }
 
@@ -165,34 +165,116 @@ fn ou_change<L: Lanes>(kbt: f64, mu: L, em1: L, r: L) -> (L, L) {
     per_mass(em1, ou_std(kbt, mu, em1) * r, mu)
 }
 
-/// Pairs whose O updates are computed together (four `f64` lanes: one AVX2 register).
-const OU_LANES: usize = 4;
-
-/// [`ou_change`] of `OU_LANES` pairs with random weights `wr`, inverse reduced masses `mu` and
-/// normals `r`: in AVX2 registers when the CPU has them and every exponent lies in `[-40, 0]`
-/// (so with `gamma mu h <= 40`), else pair by pair; the same numbers either way.
+/// Push the [`ou_change`] of every pair of a run (normals `z`) onto `out`: several pairs at
+/// once in AVX2 registers when the CPU has them and all their exponents lie in `[-40, 0]` (so
+/// with `gamma mu h <= 40`), else pair by pair; the same numbers either way. The vectorised
+/// loop takes eight pairs at a time in two registers ([`F64x4x2`]): their two chains of
+/// dependent operations are independent, and the CPU overlaps them (four at a time, in one
+/// register, took a fifth longer).
 #[inline(always)]
 fn ou_changes(
-    (gamma, kbt, h): (f64, f64, f64),
-    wr: [f64; OU_LANES],
-    mu: [f64; OU_LANES],
-    r: [f64; OU_LANES],
-) -> ([f64; OU_LANES], [f64; OU_LANES]) {
+    ou: (f64, f64, f64),
+    with: Particles,
+    pairs: &[Pair],
+    z: &[f64],
+    out: &mut Vec<Change>,
+) {
     #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx2") {
+    let (pairs, z) = if std::arch::is_x86_feature_detected!("avx2") {
         // SAFETY: the feature was detected.
-        let (wr, mu, r) = unsafe { (F64x4::new(wr), F64x4::new(mu), F64x4::new(r)) };
-        let x = ou_exponent(gamma, h, wr, mu);
-        if x.within(-40.0, 0.0) {
-            let (slope, offset) = ou_change(kbt, mu, expm1_within(x), r);
-            return (slope.to_array(), offset.to_array());
+        unsafe {
+            let (pairs, z) = ou_groups::<8, F64x4x2>(ou, with, pairs, z, out);
+            ou_groups::<4, F64x4>(ou, with, pairs, z, out)
+        }
+    } else {
+        (pairs, z)
+    };
+    out.extend(
+        pairs
+            .iter()
+            .zip(z)
+            .map(|(pair, &r)| ou_pair(ou, with, pair, r)),
+    );
+}
+
+/// The [`ou_change`] of one pair with normal `r`.
+#[inline(always)]
+fn ou_pair((gamma, kbt, h): (f64, f64, f64), with: Particles, pair: &Pair, r: f64) -> Change {
+    let mu = with.mu(pair);
+    let em1 = expm1(ou_exponent(gamma, h, pair.wr, mu));
+    let (slope, offset) = ou_change(kbt, mu, em1, r);
+    Change {
+        slope,
+        offset,
+        conservative: 0.0,
+    }
+}
+
+/// Push the [`ou_change`]s of `pairs` (normals `z`) onto `out`, `N` at a time in lanes `V`
+/// ([`ou_lanes`]), or pair by pair where an exponent is out of range; return the fewer than
+/// `N` pairs left over, with their normals.
+///
+/// # Safety
+/// The CPU must support AVX2.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+unsafe fn ou_groups<'a, const N: usize, V: Vector<N>>(
+    ou: (f64, f64, f64),
+    with: Particles,
+    pairs: &'a [Pair],
+    z: &'a [f64],
+    out: &mut Vec<Change>,
+) -> (&'a [Pair], &'a [f64]) {
+    let (groups, groups_z) = (pairs.chunks_exact(N), z.chunks_exact(N));
+    let rest = (groups.remainder(), groups_z.remainder());
+    for (pairs, z) in groups.zip(groups_z) {
+        // SAFETY: the caller's contract.
+        match unsafe { ou_lanes::<N, V>(ou, with, pairs, z) } {
+            Some(changes) => out.extend(changes),
+            None => out.extend(
+                pairs
+                    .iter()
+                    .zip(z)
+                    .map(|(pair, &r)| ou_pair(ou, with, pair, r)),
+            ),
         }
     }
-    let changes: [(f64, f64); OU_LANES] = std::array::from_fn(|l| {
-        let em1 = expm1(ou_exponent(gamma, h, wr[l], mu[l]));
-        ou_change(kbt, mu[l], em1, r[l])
-    });
-    (changes.map(|c| c.0), changes.map(|c| c.1))
+    rest
+}
+
+/// The [`ou_change`]s of the first `N` pairs (normals `z`) at once in lanes `V`, `None` unless
+/// all their exponents lie in `[-40, 0]`.
+///
+/// # Safety
+/// The CPU must support AVX2.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+unsafe fn ou_lanes<const N: usize, V: Vector<N>>(
+    (gamma, kbt, h): (f64, f64, f64),
+    with: Particles,
+    pairs: &[Pair],
+    z: &[f64],
+) -> Option<[Change; N]> {
+    // SAFETY: the caller's contract.
+    let (wr, mu, r) = unsafe {
+        (
+            V::from_fn(|l| pairs[l].wr),
+            V::from_fn(|l| with.mu(&pairs[l])),
+            V::from_fn(|l| z[l]),
+        )
+    };
+    let x = ou_exponent(gamma, h, wr, mu);
+    // No closure around the lane operations: it would not be compiled with AVX2.
+    if !x.within(-40.0, 0.0) {
+        return None;
+    }
+    let (slope, offset) = ou_change(kbt, mu, expm1_within(x), r);
+    let (slope, offset) = (slope.to_array(), offset.to_array());
+    Some(std::array::from_fn(|l| Change {
+        slope: slope[l],
+        offset: offset[l],
+        conservative: 0.0,
+    }))
 }
 
 /// O: exact pairwise Ornstein-Uhlenbeck sweep,
@@ -209,14 +291,8 @@ pub fn ou(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
         stream,
         order,
         #[inline(always)]
-        move |s: [PairState; OU_LANES]| {
-            let (wr, mu, r) = (s.map(|s| s.pair.wr), s.map(|s| s.mu), s.map(|s| s.r));
-            let (slope, offset) = ou_changes((gamma, kbt, h), wr, mu, r);
-            std::array::from_fn(|l| Change {
-                slope: slope[l],
-                offset: offset[l],
-                conservative: 0.0,
-            })
+        move |with: Particles, pairs: &[Pair], z: &[f64], out: &mut Vec<Change>| {
+            ou_changes((gamma, kbt, h), with, pairs, z, out)
         },
     );
 }
@@ -231,23 +307,19 @@ pub fn bbk(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
         return;
     }
     let root_h = h.max(0.0).sqrt();
-    sweep(
-        sys,
-        stream,
-        order,
-        #[inline(always)]
-        move |[s]: [PairState; 1]| {
-            let half_tau_h = 0.5 * gamma * s.pair.wr * s.pair.wr * s.mu * h;
-            let kick = 0.5 * sigma * s.pair.wr * s.mu * root_h * s.r;
-            let scale = 1.0 / (1.0 + half_tau_h);
-            let (slope, offset) = per_mass(-2.0 * half_tau_h * scale, 2.0 * kick * scale, s.mu);
-            [Change {
-                slope,
-                offset,
-                conservative: 0.0,
-            }]
-        },
-    );
+    let change = move |with: Particles, pair: &Pair, r: f64| {
+        let mu = with.mu(pair);
+        let half_tau_h = 0.5 * gamma * pair.wr * pair.wr * mu * h;
+        let kick = 0.5 * sigma * pair.wr * mu * root_h * r;
+        let scale = 1.0 / (1.0 + half_tau_h);
+        let (slope, offset) = per_mass(-2.0 * half_tau_h * scale, 2.0 * kick * scale, mu);
+        Change {
+            slope,
+            offset,
+            conservative: 0.0,
+        }
+    };
+    sweep(sys, stream, order, pair_by_pair(change));
 }
 
 /// T: pairwise conservative + OU, exact per pair (DPD-Trotter):
@@ -257,49 +329,78 @@ pub fn bbk(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
 pub fn trotter(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
     let (gamma, kbt) = (sys.params.gamma(), sys.params.kbt());
     sys.counters.force_evaluations += 1;
-    sweep(
-        sys,
-        stream,
-        order,
-        #[inline(always)]
-        move |[s]: [PairState; 1]| {
-            let x = gamma * s.pair.wr * s.pair.wr * s.mu * h;
-            let em1 = expm1(-x);
-            let phi1 = if x == 0.0 { 1.0 } else { -em1 / x };
-            let a = s.a();
-            let offset = a * s.pair.w * s.mu * h * phi1 + ou_std(kbt, s.mu, em1) * s.r;
-            let (slope, offset) = per_mass(em1, offset, s.mu);
-            [Change {
-                slope,
-                offset,
-                conservative: a * s.pair.w * h,
-            }]
-        },
-    );
+    let change = move |with: Particles, pair: &Pair, r: f64| {
+        let mu = with.mu(pair);
+        let x = gamma * pair.wr * pair.wr * mu * h;
+        let em1 = expm1(-x);
+        let phi1 = if x == 0.0 { 1.0 } else { -em1 / x };
+        let a = with.a(pair);
+        let offset = a * pair.w * mu * h * phi1 + ou_std(kbt, mu, em1) * r;
+        let (slope, offset) = per_mass(em1, offset, mu);
+        Change {
+            slope,
+            offset,
+            conservative: a * pair.w * h,
+        }
+    };
+    sweep(sys, stream, order, pair_by_pair(change));
     sys.apply_body_force(h);
+}
+
+/// The [`Changes`] of a flow that computes the change of each pair on its own,
+/// `change(particles, pair, r)` for normal `r`.
+#[inline(always)]
+fn pair_by_pair(change: impl Fn(Particles, &Pair, f64) -> Change + Sync + Copy) -> impl Changes {
+    #[inline(always)]
+    move |with, pairs: &[Pair], z: &[f64], out: &mut Vec<Change>| {
+        out.extend(pairs.iter().zip(z).map(|(pair, &r)| change(with, pair, r)));
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::pairs::Bound;
+    use crate::{Params, Vec3};
 
     #[test]
-    fn four_pairs_at_once_are_four_pairs_one_by_one() {
+    fn pairs_in_lanes_are_pairs_one_by_one() {
         // Exponents inside [-40, 0] (the vectorised path where the CPU has AVX2) and beyond
-        // it, zero weights and normals of both signs.
+        // it, zero weights, normals of both signs, and runs whose length is not a multiple of
+        // four.
         let (gamma, kbt, h) = (4.5, 1.0, 0.04);
-        for (k, big) in (0..4000).zip([1.0, 1.0, 1.0, 300.0].into_iter().cycle()) {
+        let params = Params::builder().build().unwrap();
+        let inv_mass: Vec<f64> = (0..64).map(|k| 0.1 + (k as f64 * 0.11) % 5.0).collect();
+        let kind = vec![0; inv_mass.len()];
+        let bound = Bound::of(&vec![Vec3::zeros(); inv_mass.len()]);
+        let with = Particles {
+            inv_mass: bound.read(&inv_mass),
+            repulsion: params.repulsion(),
+            kind: bound.read(&kind),
+        };
+        for (k, big) in (0..1000).zip([1.0, 1.0, 1.0, 300.0].into_iter().cycle()) {
             let t = k as f64;
-            let wr: [f64; 4] = std::array::from_fn(|l| (t * 0.37 + l as f64 * 0.21) % 1.0);
-            let mu: [f64; 4] = std::array::from_fn(|l| big * (0.1 + (t * 0.11 + l as f64) % 5.0));
-            let r: [f64; 4] = std::array::from_fn(|l| (t * 0.7 + l as f64).sin() * 3.0);
-            let (slope, offset) = ou_changes((gamma * big, kbt, h), wr, mu, r);
-            for l in 0..4 {
-                let em1 = expm1(ou_exponent(gamma * big, h, wr[l], mu[l]));
-                let (s, o) = ou_change(kbt, mu[l], em1, r[l]);
+            let n = 4 + k % 13;
+            let pairs: Vec<Pair> = (0..n)
+                .map(|l| Pair {
+                    i: ((k + l) % 32) as u32,
+                    j: (32 + (k * 7 + l) % 32) as u32,
+                    e: Vec3::x(),
+                    w: 0.5,
+                    wr: (t * 0.37 + l as f64 * 0.21) % 1.0,
+                })
+                .collect();
+            let z: Vec<f64> = (0..n).map(|l| (t * 0.7 + l as f64).sin() * 3.0).collect();
+            let mut changes = Vec::new();
+            ou_changes((gamma * big, kbt, h), with, &pairs, &z, &mut changes);
+            assert_eq!(changes.len(), n);
+            for ((pair, &r), c) in pairs.iter().zip(&z).zip(&changes) {
+                let mu = with.mu(pair);
+                let em1 = expm1(ou_exponent(gamma * big, h, pair.wr, mu));
+                let (s, o) = ou_change(kbt, mu, em1, r);
                 assert_eq!(
-                    (slope[l].to_bits(), offset[l].to_bits()),
-                    (s.to_bits(), o.to_bits())
+                    (c.slope.to_bits(), c.offset.to_bits(), c.conservative),
+                    (s.to_bits(), o.to_bits(), 0.0)
                 );
             }
         }
