@@ -399,22 +399,28 @@ impl PairTable {
             if order == SweepOrder::Reverse {
                 ids.reverse();
             }
-            // Groups as large as `K` allows while every thread still gets one.
-            let threads = if parallel {
-                rayon::current_num_threads()
-            } else {
-                1
+            let independent = c < g.independent;
+            let threads = match parallel && independent {
+                true => rayon::current_num_threads(),
+                false => 1,
             };
-            let size = if c < g.independent {
-                (ids.len() / threads).clamp(1, K)
-            } else {
-                1
+            // As few groups of at most `K` runs as the threads can share evenly, of sizes
+            // that differ by at most one, so that each thread gets as many runs.
+            let groups = match independent {
+                true => ids
+                    .len()
+                    .div_ceil(K)
+                    .next_multiple_of(threads)
+                    .min(ids.len()),
+                false => ids.len(),
             };
-            if parallel && c < g.independent {
-                let sums: Vec<_> = ids.par_chunks(size).map(group).collect();
+            let group =
+                |k: usize| group(&ids[k * ids.len() / groups..(k + 1) * ids.len() / groups]);
+            if threads > 1 {
+                let sums: Vec<_> = (0..groups).into_par_iter().map(group).collect();
                 sums.into_iter().fold(T::default(), add)
             } else {
-                ids.chunks(size).map(group).fold(T::default(), add)
+                (0..groups).map(group).fold(T::default(), add)
             }
         };
         match order {
@@ -505,9 +511,11 @@ fn visit_runs_prepared<const K: usize, P: Copy, T: Virial>(
                     (pairs, mine)
                 };
                 let mut sums = std::array::from_fn(|_| T::default());
-                if runs.len() == K && shifts.is_none() {
-                    let runs: [_; K] = std::array::from_fn(&mut of);
-                    visit_interleaved(runs, order, visit, &mut sums);
+                if runs.len() > 1 && shifts.is_none() {
+                    let mut each: [(&[Pair], &[P]); K] = [(&[], &[]); K];
+                    let taken = each.iter_mut().take(runs.len()).enumerate();
+                    taken.for_each(|(k, run)| *run = of(k));
+                    visit_interleaved(&each[..runs.len()], order, visit, &mut sums);
                 } else {
                     for (k, sum) in sums.iter_mut().enumerate().take(runs.len()) {
                         let (pairs, prepared) = of(k);
@@ -523,42 +531,40 @@ fn visit_runs_prepared<const K: usize, P: Copy, T: Virial>(
 }
 
 /// Add to `sums[k]` the visits of the pairs of run `runs[k]` (its pairs and the value of each),
-/// in `order`, run `k` taking every `K`-th turn until the shortest run ends, then the rest of
-/// each run after the other.
+/// in `order`, the runs taking turns until the shortest ends, then the rest of each run after
+/// the other. At most `K` runs.
 #[inline(always)]
 fn visit_interleaved<const K: usize, P: Copy, T: Virial>(
-    runs: [(&[Pair], &[P]); K],
+    runs: &[(&[Pair], &[P])],
     order: SweepOrder,
     visit: impl Fn(&Pair, P, f64) -> T + Copy,
     sums: &mut [T; K],
 ) {
     let common = runs.iter().map(|(pairs, _)| pairs.len()).min().unwrap_or(0);
     let reverse = order == SweepOrder::Reverse;
-    // The first `common` pairs of each run in visiting order, and the rest.
-    let (firsts, rests) = (
-        runs.map(|(pairs, values)| {
-            let start = if reverse { pairs.len() - common } else { 0 };
-            (
-                &pairs[start..start + common],
-                &values[start..start + common],
-            )
-        }),
-        runs.map(|(pairs, values)| {
-            let rest = if reverse {
-                0..pairs.len() - common
-            } else {
-                common..pairs.len()
-            };
-            (&pairs[rest.clone()], &values[rest])
-        }),
-    );
+    // The first `common` pairs of each run in visiting order.
+    let mut firsts: [(&[Pair], &[P]); K] = [(&[], &[]); K];
+    for (first, &(pairs, values)) in firsts.iter_mut().zip(runs) {
+        let start = if reverse { pairs.len() - common } else { 0 };
+        *first = (
+            &pairs[start..start + common],
+            &values[start..start + common],
+        );
+    }
+    let firsts = &firsts[..runs.len()];
     for m in 0..common {
         let k = if reverse { common - 1 - m } else { m };
         for ((pairs, values), sum) in firsts.iter().zip(sums.iter_mut()) {
             *sum = std::mem::take(sum).add(visit(&pairs[k], values[k], 0.0));
         }
     }
-    for ((pairs, values), sum) in rests.into_iter().zip(sums) {
+    for (&(pairs, values), sum) in runs.iter().zip(sums) {
+        let rest = if reverse {
+            0..pairs.len() - common
+        } else {
+            common..pairs.len()
+        };
+        let (pairs, values) = (&pairs[rest.clone()], &values[rest]);
         let values = move |k: usize| values[k];
         *sum = visit_all(std::mem::take(sum), pairs, values, None, order, visit);
     }
@@ -830,7 +836,16 @@ mod tests {
 
     #[test]
     fn runs_visit_each_pair_once_in_order_with_its_preparation_and_shift() {
-        let cases: [&[u32]; 6] = [&[0], &[5], &[0, 0], &[3, 7], &[9, 2], &[6, 6]];
+        let cases: [&[u32]; 8] = [
+            &[0],
+            &[5],
+            &[0, 0],
+            &[3, 7],
+            &[9, 2],
+            &[6, 6],
+            &[4, 0, 8],
+            &[5, 9, 7],
+        ];
         for lengths in cases {
             for shifted in [false, true] {
                 for order in [SweepOrder::Forward, SweepOrder::Reverse] {
@@ -854,12 +869,8 @@ mod tests {
                         })
                         .collect();
                     let case = format!("{lengths:?} {order:?} shifted {shifted}");
-                    if lengths.len() == 1 {
-                        assert_eq!(visited::<1>(lengths, order, shifted), expected, "{case}");
-                    } else {
-                        // Interleaved unless shifted.
-                        assert_eq!(visited::<2>(lengths, order, shifted), expected, "{case}");
-                    }
+                    // Alternating unless shifted or alone, also fewer runs than `K`.
+                    assert_eq!(visited::<3>(lengths, order, shifted), expected, "{case}");
                 }
             }
         }
