@@ -472,7 +472,7 @@ pub(crate) fn visit_run<T: Virial>(
 
 /// The runs of a group of [`PairTable::visit_runs`] visited with the preparation of
 /// [`PairTable::visit_sum_prepared`], `shifts` the table's velocity shifts if it has them:
-/// each run's result. With `K` runs and no shifts their visits alternate.
+/// each run's result. Runs of a group of more than one without shifts alternate.
 #[inline(always)]
 fn visit_runs_prepared<const K: usize, P: Copy, T: Virial>(
     runs: &[(Range<usize>, &[Pair])],

@@ -169,8 +169,9 @@ fn ou_change<L: Lanes>(kbt: f64, mu: L, em1: L, r: L) -> (L, L) {
 /// once in AVX2 registers when the CPU has them and all their exponents lie in `[-40, 0]` (so
 /// with `gamma mu h <= 40`), else pair by pair; the same numbers either way. The vectorised
 /// loop takes eight pairs at a time in two registers ([`F64x4x2`]): their two chains of
-/// dependent operations are independent, and the CPU overlaps them (four at a time, in one
-/// register, took a fifth longer).
+/// dependent operations are independent, and the CPU overlaps them (with four pairs at a time
+/// in one register this loop took 9.5 instead of 6.8 timestamp-counter cycles per pair, at
+/// N = 24 000 on the development VM).
 #[inline(always)]
 fn ou_changes(
     ou: (f64, f64, f64),
