@@ -308,12 +308,13 @@ mod x86 {
                 each(|a, b| if a > 0.0 { a } else { b })
             );
             assert!(!x.within(-10.0, 10.0));
+            // SAFETY: as above.
+            let inside = unsafe { V::from_fn(|l| [0.0, -1.0, -40.0, -0.5][l % 4]) };
+            assert!(inside.within(-40.0, 0.0));
             for lane in 0..N {
                 // One lane at a time out of range.
                 let c: [f64; N] = std::array::from_fn(|l| if l == lane { 1.0 } else { -0.5 });
                 // SAFETY: as above.
-                let inside = unsafe { V::from_fn(|l| [0.0, -1.0, -40.0, -0.5][l % 4]) };
-                assert!(inside.within(-40.0, 0.0));
                 assert!(!unsafe { V::from_fn(|l| c[l]) }.within(-40.0, 0.0));
             }
         }

@@ -384,21 +384,24 @@ impl PairTable {
         group: impl Fn(&[(Range<usize>, &[Pair])]) -> [T; K] + Sync,
     ) -> T {
         let g = &self.groups;
-        let run = |&k: &u32| {
-            let range = g.runs[k as usize] as usize..g.runs[k as usize + 1] as usize;
+        let run = |k: usize| {
+            let range = g.runs[k] as usize..g.runs[k + 1] as usize;
             (range.clone(), self.pairs.slice(range))
         };
-        // Each result of a group with the number of runs it had.
-        let group = |ids: &[u32]| (group(&ids.iter().map(run).collect::<Vec<_>>()), ids.len());
         let add =
             |total: T, (sums, n): ([T; K], usize)| sums.into_iter().take(n).fold(total, T::add);
         let parallel = g.independent > 0 && on_all_threads(self.pairs.len());
         let colours = g.colours.len().saturating_sub(1);
         let colour = |c: usize| -> T {
-            let mut ids: Vec<u32> = (g.colours[c]..g.colours[c + 1]).collect();
-            if order == SweepOrder::Reverse {
-                ids.reverse();
-            }
+            let (first, n) = (
+                g.colours[c] as usize,
+                (g.colours[c + 1] - g.colours[c]) as usize,
+            );
+            // The run at position `m` of the colour in visiting order.
+            let at = |m: usize| match order {
+                SweepOrder::Forward => first + m,
+                SweepOrder::Reverse => first + n - 1 - m,
+            };
             let independent = c < g.independent;
             let threads = match parallel && independent {
                 true => rayon::current_num_threads(),
@@ -407,15 +410,18 @@ impl PairTable {
             // As few groups of at most `K` runs as the threads can share evenly, of sizes
             // that differ by at most one, so that each thread gets as many runs.
             let groups = match independent {
-                true => ids
-                    .len()
-                    .div_ceil(K)
-                    .next_multiple_of(threads)
-                    .min(ids.len()),
-                false => ids.len(),
+                true => n.div_ceil(K).next_multiple_of(threads).min(n),
+                false => n,
             };
-            let group =
-                |k: usize| group(&ids[k * ids.len() / groups..(k + 1) * ids.len() / groups]);
+            // Each result of group `k` with the number of runs it had.
+            let group = |k: usize| {
+                let positions = k * n / groups..(k + 1) * n / groups;
+                let mut runs: [_; K] = std::array::from_fn(|_| (0..0, &[][..]));
+                for (slot, m) in runs.iter_mut().zip(positions.clone()) {
+                    *slot = run(at(m));
+                }
+                (group(&runs[..positions.len()]), positions.len())
+            };
             if threads > 1 {
                 let sums: Vec<_> = (0..groups).into_par_iter().map(group).collect();
                 sums.into_iter().fold(T::default(), add)
@@ -486,6 +492,7 @@ fn visit_runs_prepared<const K: usize, P: Copy, T: Virial>(
         with_avx2(
             #[inline(always)]
             move || {
+                assert!(runs.len() <= K, "at most {K} runs in a group");
                 // The normals and then the prepared values of every run, one after the other.
                 let total = runs.iter().map(|(_, pairs)| pairs.len()).sum();
                 if noise.is_none() {
@@ -503,23 +510,22 @@ fn visit_runs_prepared<const K: usize, P: Copy, T: Virial>(
                     assert_eq!(prepared.len(), start + pairs.len(), "one value per pair");
                     start += pairs.len();
                 }
+                // Each run's pairs with its prepared values.
+                let mut each: [(&[Pair], &[P]); K] = [(&[], &[]); K];
                 let mut rest = prepared.as_slice();
-                let mut of = |k: usize| {
-                    let pairs = runs[k].1;
+                for (run, &(_, pairs)) in each.iter_mut().zip(runs) {
                     let (mine, others) = rest.split_at(pairs.len());
-                    rest = others;
-                    (pairs, mine)
-                };
+                    (*run, rest) = ((pairs, mine), others);
+                }
+                let each = &each[..runs.len()];
                 let mut sums = std::array::from_fn(|_| T::default());
                 if runs.len() > 1 && shifts.is_none() {
-                    let mut each: [(&[Pair], &[P]); K] = [(&[], &[]); K];
-                    let taken = each.iter_mut().take(runs.len()).enumerate();
-                    taken.for_each(|(k, run)| *run = of(k));
-                    visit_interleaved(&each[..runs.len()], order, visit, &mut sums);
+                    visit_interleaved(each, order, visit, &mut sums);
                 } else {
-                    for (k, sum) in sums.iter_mut().enumerate().take(runs.len()) {
-                        let (pairs, prepared) = of(k);
-                        let dvx = shifts.map(|s| &s[runs[k].0.clone()]);
+                    for ((&(pairs, prepared), (range, _)), sum) in
+                        each.iter().zip(runs).zip(&mut sums)
+                    {
+                        let dvx = shifts.map(|s| &s[range.clone()]);
                         let prepared = move |k: usize| prepared[k];
                         *sum = visit_all(T::default(), pairs, prepared, dvx, order, visit);
                     }

@@ -180,22 +180,18 @@ fn ou_changes(
     z: &[f64],
     out: &mut Vec<Change>,
 ) {
+    let each = pair_by_pair(move |with, pair: &Pair, r| ou_pair(ou, with, pair, r));
     #[cfg(target_arch = "x86_64")]
     let (pairs, z) = if std::arch::is_x86_feature_detected!("avx2") {
         // SAFETY: the feature was detected.
         unsafe {
-            let (pairs, z) = ou_groups::<8, F64x4x2>(ou, with, pairs, z, out);
-            ou_groups::<4, F64x4>(ou, with, pairs, z, out)
+            let (pairs, z) = ou_groups::<8, F64x4x2>(ou, with, pairs, z, out, each);
+            ou_groups::<4, F64x4>(ou, with, pairs, z, out, each)
         }
     } else {
         (pairs, z)
     };
-    out.extend(
-        pairs
-            .iter()
-            .zip(z)
-            .map(|(pair, &r)| ou_pair(ou, with, pair, r)),
-    );
+    each(with, pairs, z, out)
 }
 
 /// The [`ou_change`] of one pair with normal `r`.
@@ -212,8 +208,8 @@ fn ou_pair((gamma, kbt, h): (f64, f64, f64), with: Particles, pair: &Pair, r: f6
 }
 
 /// Push the [`ou_change`]s of `pairs` (normals `z`) onto `out`, `N` at a time in lanes `V`
-/// ([`ou_lanes`]), or pair by pair where an exponent is out of range; return the fewer than
-/// `N` pairs left over, with their normals.
+/// ([`ou_lanes`]), or by `each` (pair by pair) where an exponent is out of range; return the
+/// fewer than `N` pairs left over, with their normals.
 ///
 /// # Safety
 /// The CPU must support AVX2.
@@ -225,6 +221,7 @@ unsafe fn ou_groups<'a, const N: usize, V: Vector<N>>(
     pairs: &'a [Pair],
     z: &'a [f64],
     out: &mut Vec<Change>,
+    each: impl Changes,
 ) -> (&'a [Pair], &'a [f64]) {
     let (groups, groups_z) = (pairs.chunks_exact(N), z.chunks_exact(N));
     let rest = (groups.remainder(), groups_z.remainder());
@@ -232,12 +229,7 @@ unsafe fn ou_groups<'a, const N: usize, V: Vector<N>>(
         // SAFETY: the caller's contract.
         match unsafe { ou_lanes::<N, V>(ou, with, pairs, z) } {
             Some(changes) => out.extend(changes),
-            None => out.extend(
-                pairs
-                    .iter()
-                    .zip(z)
-                    .map(|(pair, &r)| ou_pair(ou, with, pair, r)),
-            ),
+            None => each(with, pairs, z, out),
         }
     }
     rest
