@@ -21,7 +21,5 @@ pub use dpd_ir::{analysis, lang, program, Analysis, Program};
 pub use dpd_macros::dpd_scheme;
 pub use dpd_schemes as schemes;
 
-pub mod measure;
-
 #[doc(hidden)]
 pub use dpd_core::__private;

@@ -307,7 +307,7 @@ fn summarise(scheme: &str, rows: &[Aggregate], observable: Observable) -> Scheme
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::measure::flows::Viscosity;
+    use crate::flows::Viscosity;
     use approx::assert_relative_eq;
     use std::sync::atomic::AtomicUsize;
     use std::sync::atomic::{AtomicBool, Ordering};

@@ -3,14 +3,14 @@
 
 use super::run::header;
 use super::{bad_input, progress, INTERRUPTED};
-use dpd::measure::sweep::{self, load_finished, run_sweep, Hooks};
-use dpd::measure::{plot, report, Control, Observable, Overrides, Scene, SweepResults};
+use dpd_measure::sweep::{self, load_finished, run_sweep, Hooks};
+use dpd_measure::{plot, report, Control, Observable, Overrides, Scene, SweepResults};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::atomic::Ordering;
 
 /// The main job's scene: the standard gamma = 4.5 comparison, shortened.
-const MAIN_SCENE: &str = include_str!("../../scenes/main.toml");
+const MAIN_SCENE: &str = include_str!("../../../scenes/main.toml");
 
 #[derive(Debug, clap::Args)]
 pub struct Args {

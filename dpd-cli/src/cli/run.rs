@@ -1,12 +1,12 @@
 //! `dpd run`: one scene with one scheme; prints the observables averaged over the runs.
 
 use super::{bad_input, print_json, progress, INTERRUPTED};
-use dpd::measure::flows::ProfileSpec;
-use dpd::measure::plot::profile_plot;
-use dpd::measure::runner::{lock, run_parallel, Control, Job, RunResult};
-use dpd::measure::{report, Aggregate, Overrides, Scene};
 use dpd::schemes::registry::resolve;
 use dpd::Scheme;
+use dpd_measure::flows::ProfileSpec;
+use dpd_measure::plot::profile_plot;
+use dpd_measure::runner::{lock, run_parallel, Control, Job, RunResult};
+use dpd_measure::{report, Aggregate, Overrides, Scene};
 use serde::Serialize;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};

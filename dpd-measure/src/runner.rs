@@ -260,7 +260,7 @@ pub fn lock<T>(m: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::measure::scene::RdfSpec;
+    use crate::scene::RdfSpec;
     use dpd_schemes::registry::resolve;
 
     fn tiny() -> Scene {

@@ -623,7 +623,7 @@ mod tests {
 
     #[test]
     fn every_shipped_scene_is_valid() {
-        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
         let mut count = 0;
         for entry in std::fs::read_dir(dir).unwrap() {
             let path = entry.unwrap().path();
