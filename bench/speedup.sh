@@ -12,7 +12,7 @@ steps=${2:-30}
 rounds=${ROUNDS:-6}
 all=$(nproc)
 
-cargo build --release --quiet --example step_timing
+cargo build --release --quiet -p dpd --example step_timing
 out=$(mktemp)
 for round in $(seq "$rounds"); do
   for scheme in vv aboba; do

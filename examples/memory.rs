@@ -6,7 +6,7 @@
 //! no candidates); its spare capacity counts as "without the pair list", as do the per-thread
 //! scratch buffers (the stencil of a cell, the normals of the run a noisy pass is at).
 //!
-//! Usage: `cargo run --release --example memory -- N`
+//! Usage: `cargo run --release -p dpd --example memory -- N`
 
 use dpd::init::equilibrium_box;
 use dpd::pairs::Pair;

@@ -8,7 +8,7 @@
 //! sweep alone, on the table of the last relaxation step, so that its instructions can be
 //! counted apart (cachegrind of `--steps 21` less that of `--steps 1` is 20 sweeps).
 //!
-//! Usage: `cargo run --release --example phase_timing -- --n 192000 --steps 20 --threads 2`
+//! Usage: `cargo run --release -p dpd --example phase_timing -- --n 192000 --steps 20 --threads 2`
 
 use clap::Parser;
 use dpd::flow::{drift, kick, ou, SweepOrder};

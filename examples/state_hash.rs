@@ -3,7 +3,7 @@
 //! print the same hash ran the same trajectory. Used to check that a change to the pair loops
 //! leaves trajectories bitwise unchanged (docs/performance.md).
 //!
-//! Usage: `cargo run --release --example state_hash -- N STEPS THREADS SKIN SCHEME`, SCHEME a
+//! Usage: `cargo run --release -p dpd --example state_hash -- N STEPS THREADS SKIN SCHEME`, SCHEME a
 //! registry name.
 
 use dpd::init::equilibrium_box;

@@ -2,7 +2,7 @@
 //! gamma = 4.5, k_B T = 1), for side-by-side comparisons with other engines
 //! (`bench/side_by_side.sh`). Prints one JSON object per scheme.
 //!
-//! Usage: `cargo run --release --example step_timing -- N STEPS THREADS SKIN [SCHEME]`, SCHEME
+//! Usage: `cargo run --release -p dpd --example step_timing -- N STEPS THREADS SKIN [SCHEME]`, SCHEME
 //! `vv` or `aboba` to time one of them (default both). Besides the mean it prints the fastest
 //! block of 10 steps, steadier on a shared machine for comparing two builds.
 
