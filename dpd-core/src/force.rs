@@ -53,7 +53,7 @@ impl<'a> Conservative<'a> {
     /// be for pairs of disjoint particles (as [`PairTable::visit`] hands them on).
     #[inline(always)]
     pub(crate) fn pair(&self, pair: &Pair) {
-        let f = self.a.of_pair(self.kind, pair.i, pair.j) * pair.w * pair.e;
+        let f = self.a.of_pair(self.kind, pair.i, pair.j).force(pair.w) * pair.e;
         // SAFETY: no other thread is at a pair of i or j (the caller's contract), and `out`
         // was made for the table's bound.
         unsafe {
@@ -221,7 +221,7 @@ impl<'a> Full<'a> {
             self.p.get(j) * self.inv_mass.get(j),
             dvx,
         );
-        let conservative = self.a.of_pair(self.kind, i, j) * pair.w;
+        let conservative = self.a.of_pair(self.kind, i, j).force(pair.w);
         let mut f = conservative - self.gamma * pair.wr * pair.wr * u;
         if self.noise > 0.0 {
             f += self.noise * pair.wr * z;

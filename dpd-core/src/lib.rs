@@ -27,6 +27,7 @@ pub mod neighbour;
 pub mod observe;
 pub mod pairs;
 pub mod params;
+pub mod potential;
 pub mod reference;
 pub mod rng;
 pub mod scheme;

@@ -3,6 +3,7 @@
 
 use crate::error::{non_negative, positive, ParamError};
 use crate::pairs::ByPair;
+use crate::potential::Soft;
 use serde::{Deserialize, Serialize};
 
 /// Validated pair-force parameters.
@@ -152,7 +153,13 @@ impl Params {
         Repulsion {
             a: &self.a,
             types: self.types,
+            rc: self.rc,
         }
+    }
+    /// The soft repulsion between types `ti` and `tj` ([`crate::potential`]).
+    #[inline(always)]
+    pub fn soft(&self, ti: u16, tj: u16) -> Soft {
+        Soft::new(self.a(ti, tj), self.rc)
     }
     pub fn types(&self) -> usize {
         self.types
@@ -188,11 +195,12 @@ impl Params {
     }
 }
 
-/// The repulsion `a_ij` between particle types ([`Params::repulsion`]).
+/// The repulsion `a_ij` between particle types, with the cutoff ([`Params::repulsion`]).
 #[derive(Clone, Copy, Debug)]
 pub struct Repulsion<'a> {
     a: &'a [f64],
     types: usize,
+    rc: f64,
 }
 
 impl Repulsion<'_> {
@@ -202,15 +210,16 @@ impl Repulsion<'_> {
         self.a[ti as usize * self.types + tj as usize]
     }
 
-    /// Repulsion between particles `i` and `j` of a pair table, their types in `kind`. With
+    /// The soft repulsion between particles `i` and `j` of a pair table, their types in `kind`. With
     /// one type the types are not read: a pair loop then loads two values fewer per pair.
     #[inline(always)]
-    pub(crate) fn of_pair(self, kind: ByPair<'_, u16>, i: u32, j: u32) -> f64 {
-        if self.types == 1 {
+    pub(crate) fn of_pair(self, kind: ByPair<'_, u16>, i: u32, j: u32) -> Soft {
+        let a = if self.types == 1 {
             self.a[0]
         } else {
             self.of(kind.get(i), kind.get(j))
-        }
+        };
+        Soft::new(a, self.rc)
     }
 }
 

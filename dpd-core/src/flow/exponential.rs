@@ -108,7 +108,7 @@ pub fn exponential_velocity(sys: &mut System, h: f64, stream: u8, noise: EtdNois
             pair.normal_velocity::<false>(vi, vj, dvx)
         };
         let dissipative = -gamma * wd * u;
-        let f = (params.a(kind[i], kind[j]) * pair.w + dissipative) * pair.e;
+        let f = (params.soft(kind[i], kind[j]).force(pair.w) + dissipative) * pair.e;
         force[i] += f;
         force[j] -= f;
         let r = (gamma * wd) * pair.e.component_mul(&pair.e);
@@ -187,7 +187,8 @@ fn pair_virial(
         .zip(pair_forces)
         .map(|(pair, &[dissipative, random])| {
             let (ci, cj) = (factors(pair.i as usize), factors(pair.j as usize));
-            let conservative = params.a(kind[pair.i as usize], kind[pair.j as usize]) * pair.w;
+            let soft = params.soft(kind[pair.i as usize], kind[pair.j as usize]);
+            let conservative = soft.force(pair.w);
             let drift = 0.5 * (ci.drift + cj.drift);
             let spread = 0.5 * (ci.spread + cj.spread);
             let impulse = ((conservative + dissipative) * drift + random * spread

@@ -6,12 +6,13 @@ use crate::lanes::Lanes;
 use crate::lanes::{F64x4, F64x4x2, Vector};
 use crate::pairs::{ByPair, Noise, Pair, Virial};
 use crate::params::Repulsion;
+use crate::potential::Soft;
 use crate::system::System;
 use crate::Tensor;
 use dpd_ir::SweepOrder;
 
 /// What a pair update needs besides the pair and its normal: the particles' inverse masses,
-/// and on request their repulsion `a_ij` ([`Particles::a`]).
+/// and on request their soft repulsion ([`Particles::soft`]).
 #[derive(Clone, Copy)]
 struct Particles<'a> {
     inv_mass: ByPair<'a, f64>,
@@ -26,9 +27,9 @@ impl Particles<'_> {
         self.inv_mass.get(pair.i) + self.inv_mass.get(pair.j)
     }
 
-    /// The repulsion `a_ij` of the pair's types.
+    /// The soft repulsion of the pair's types.
     #[inline(always)]
-    fn a(self, pair: &Pair) -> f64 {
+    fn soft(self, pair: &Pair) -> Soft {
         self.repulsion.of_pair(self.kind, pair.i, pair.j)
     }
 }
@@ -327,13 +328,13 @@ pub fn trotter(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
         let x = gamma * pair.wr * pair.wr * mu * h;
         let em1 = expm1(-x);
         let phi1 = if x == 0.0 { 1.0 } else { -em1 / x };
-        let a = with.a(pair);
-        let offset = a * pair.w * mu * h * phi1 + ou_std(kbt, mu, em1) * r;
+        let f = with.soft(pair).force(pair.w);
+        let offset = f * mu * h * phi1 + ou_std(kbt, mu, em1) * r;
         let (slope, offset) = per_mass(em1, offset, mu);
         Change {
             slope,
             offset,
-            conservative: a * pair.w * h,
+            conservative: f * h,
         }
     };
     sweep(sys, stream, order, pair_by_pair(change));

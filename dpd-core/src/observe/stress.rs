@@ -120,10 +120,10 @@ fn conservative_virial(sys: &mut System) -> Tensor {
         pairs
             .iter()
             .map(|pair| {
-                let a = sys
+                let soft = sys
                     .params
-                    .a(sys.kind[pair.i as usize], sys.kind[pair.j as usize]);
-                (pair.r(sys.params.rc()) * a * pair.w) * pair.e * pair.e.transpose()
+                    .soft(sys.kind[pair.i as usize], sys.kind[pair.j as usize]);
+                soft.virial(pair.w) * pair.e * pair.e.transpose()
             })
             .sum()
     })

@@ -51,10 +51,8 @@ pub fn kinetic_temperature(sys: &System) -> f64 {
 
 /// Measure [`Thermo`] at the current positions and momenta.
 ///
-/// Pair potential `phi(r) = (a r_c / 2)(1 - r/r_c)^2`; in 3-D
-/// `lap_i U = sum_j [a / r_c - 2 a (1 - r/r_c) / r]`.
+/// The pair potential, its Laplacian and virial are those of [`crate::potential::Soft`].
 pub fn thermo(sys: &mut System) -> Thermo {
-    let rc = sys.params.rc();
     let n = sys.len() as f64;
     let volume = sys.bx.volume();
     let tk = kinetic_temperature(sys);
@@ -62,11 +60,10 @@ pub fn thermo(sys: &mut System) -> Thermo {
         let (params, kind) = (&sys.params, &sys.kind);
         let (mut u, mut lap, mut virial) = (0.0, 0.0, 0.0);
         for pair in pairs.iter() {
-            let a = params.a(kind[pair.i as usize], kind[pair.j as usize]);
-            u += 0.5 * a * rc * pair.w * pair.w;
-            let r = pair.r(rc);
-            lap += 2.0 * (a / rc - 2.0 * a * pair.w / r);
-            virial += r * a * pair.w;
+            let soft = params.soft(kind[pair.i as usize], kind[pair.j as usize]);
+            u += soft.energy(pair.w);
+            lap += soft.laplacian(pair.w);
+            virial += soft.virial(pair.w);
         }
         let numerator: f64 = forces.iter().map(|f| f.norm_squared()).sum();
         (u, lap, virial, numerator)
