@@ -21,12 +21,14 @@
 //! | [`composition`] | Yoshida's triple jump composed symmetrically with exact O |
 //! | [`exponential`] | SETD, MSETD for small masses |
 //!
+//! [`check`] reports the analysis of a registry name or a scheme string (`dpd check`).
 //! [`stability`] runs every registered scheme over a matrix of friction, mass and time step.
 //!
 //! Not included: the second-order SETD of the same source. It needs the previous step's
 //! acceleration, state that `dpd_core::System` does not carry between steps (nor write to a
 //! checkpoint), so it could not restart exactly.
 
+pub mod check;
 pub mod composition;
 pub mod exponential;
 pub mod langevin;
