@@ -207,8 +207,10 @@ pub enum SceneError {
     Invalid(#[from] ParamError),
 }
 
-/// Command-line overrides of scene keys; each flag replaces the key of the same name.
-#[derive(Clone, Debug, Default, clap::Args)]
+/// Command-line overrides of scene keys; each flag replaces the key of the same name. Also read
+/// from keyword arguments (the Python module), where unknown keys are refused.
+#[derive(Clone, Debug, Default, clap::Args, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Overrides {
     /// Scene file (TOML); default: the standard gamma = 4.5 box
     #[arg(long, value_name = "FILE")]
@@ -251,6 +253,31 @@ pub struct Overrides {
     /// Lees-Edwards shear rate kappa (measures the shear viscosity)
     #[arg(long, value_name = "KAPPA", allow_hyphen_values = true)]
     pub shear_rate: Option<f64>,
+}
+
+/// Command-line overrides of the `[sweep]` table's keys; each flag replaces the key of the same
+/// name.
+#[derive(Clone, Debug, Default, clap::Args)]
+pub struct SweepOverrides {
+    /// Schemes to compare, comma-separated registry names or scheme strings
+    #[arg(long, value_delimiter = ',')]
+    pub schemes: Option<Vec<String>>,
+    /// Smallest time step of the grid
+    #[arg(long)]
+    pub dt_min: Option<f64>,
+    /// Largest time step of the grid
+    #[arg(long)]
+    pub dt_max: Option<f64>,
+    /// Ratio of neighbouring time steps (default 1.15)
+    #[arg(long)]
+    pub dt_factor: Option<f64>,
+    /// Scheme whose efficiency is 1
+    #[arg(long)]
+    pub reference: Option<String>,
+    /// Whose relative error gives the critical dt: T_C against k_B T (default) or, in a
+    /// sheared scene, the shear viscosity against the baseline run
+    #[arg(long, value_enum)]
+    pub observable: Option<Observable>,
 }
 
 impl Scene {
@@ -300,6 +327,18 @@ impl Scene {
         }
         s.validate()?;
         Ok(s)
+    }
+
+    /// `o`'s keys applied to the scene's `[sweep]` table (or the default one), validated.
+    pub fn apply_sweep(&mut self, o: &SweepOverrides) -> Result<(), SceneError> {
+        let mut w = self.sweep.clone().unwrap_or_default();
+        macro_rules! set {
+            ($($key:ident),*) => { $(if let Some(v) = &o.$key { w.$key = v.clone(); })* };
+        }
+        set!(schemes, dt_min, dt_max, dt_factor, reference, observable);
+        self.sweep = Some(w);
+        self.validate()?;
+        Ok(())
     }
 
     /// Check every key; the first invalid one is reported by name.
@@ -608,6 +647,28 @@ mod tests {
             ..Default::default()
         };
         assert!(Scene::resolve(&bad).unwrap_err().to_string().contains("dt"));
+    }
+
+    #[test]
+    fn sweep_overrides_replace_sweep_keys_and_are_validated() {
+        let mut s = Scene::from_toml("[sweep]\ndt_max = 0.1\n", "t").unwrap();
+        let o = SweepOverrides {
+            schemes: Some(vec!["aboba".into(), "vv".into()]),
+            dt_min: Some(0.05),
+            ..Default::default()
+        };
+        s.apply_sweep(&o).unwrap();
+        let w = s.sweep.clone().unwrap();
+        assert_eq!((w.schemes.len(), w.dt_min, w.dt_max), (2, 0.05, 0.1));
+        let bad = SweepOverrides {
+            reference: Some("baoab".into()),
+            ..Default::default()
+        };
+        let e = s.apply_sweep(&bad).unwrap_err().to_string();
+        assert!(
+            e.starts_with("scene: invalid sweep.reference = baoab"),
+            "{e}"
+        );
     }
 
     #[test]

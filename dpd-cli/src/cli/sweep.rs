@@ -4,7 +4,7 @@
 use super::run::header;
 use super::{bad_input, progress, INTERRUPTED};
 use dpd_measure::sweep::{self, load_finished, run_sweep, Hooks};
-use dpd_measure::{plot, report, Control, Observable, Overrides, Scene, SweepResults};
+use dpd_measure::{plot, report, Control, Overrides, Scene, SweepOverrides, SweepResults};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::atomic::Ordering;
@@ -16,25 +16,8 @@ const MAIN_SCENE: &str = include_str!("../../../scenes/main.toml");
 pub struct Args {
     #[command(flatten)]
     scene: Overrides,
-    /// Schemes to compare, comma-separated registry names or scheme strings
-    #[arg(long, value_delimiter = ',')]
-    schemes: Option<Vec<String>>,
-    /// Smallest time step of the grid
-    #[arg(long)]
-    dt_min: Option<f64>,
-    /// Largest time step of the grid
-    #[arg(long)]
-    dt_max: Option<f64>,
-    /// Ratio of neighbouring time steps (default 1.15)
-    #[arg(long)]
-    dt_factor: Option<f64>,
-    /// Scheme whose efficiency is 1
-    #[arg(long)]
-    reference: Option<String>,
-    /// Whose relative error gives the critical dt: T_C against k_B T (default) or, in a
-    /// sheared scene, the shear viscosity against the baseline run
-    #[arg(long, value_enum)]
-    observable: Option<Observable>,
+    #[command(flatten)]
+    sweep: SweepOverrides,
     /// Results file: written after every finished point and read back to resume
     /// [default: OUT/sweep.json]
     #[arg(long, value_name = "FILE")]
@@ -52,17 +35,8 @@ pub fn main(args: Args) -> ExitCode {
         Ok(scene) => scene,
         Err(e) => return bad_input(e),
     };
-    let mut w = sweep::spec(&scene);
-    if let Some(s) = args.schemes {
-        w.schemes = s;
-    }
-    macro_rules! set {
-        ($($key:ident),*) => { $(if let Some(v) = args.$key { w.$key = v; })* };
-    }
-    set!(dt_min, dt_max, dt_factor, reference, observable);
-    scene.sweep = Some(w);
-    if let Err(e) = scene.validate() {
-        return bad_input(format!("scene: {e}"));
+    if let Err(e) = scene.apply_sweep(&args.sweep) {
+        return bad_input(e);
     }
     let json = args.json.unwrap_or_else(|| args.out.join("sweep.json"));
     execute(&scene, &json, &args.out, args.fresh)
