@@ -1,16 +1,16 @@
 //! dpd: compose, check and run splitting integrators for dissipative particle dynamics.
 //!
-//! ```ignore
-//! let scheme = dpd::dpd_scheme!("BAOOAB");
-//! sys.advance(&scheme, 1000)?;
-//! ```
-//!
 //! - [`dpd_scheme!`] turns a scheme string into a step function specialised at compile time;
 //!   the language is documented in [`lang`].
 //! - [`analysis`] checks consistency, deterministic order and the invariant-measure order bound.
 //! - [`schemes`] holds the named schemes of the literature and their registry.
 //! - The core ([`System`], sub-flows in [`flow`], observables in [`observe`], checkpoints) comes
 //!   from `dpd-core`.
+//!
+//! The formulas are in `docs/algorithms.md` of the repository.
+//!
+//! A quick start (build the standard box, step it with a `dpd_scheme!`, read the temperatures)
+//! is `examples/quick_start.rs`, shown in README.md and run by `tests/readme.rs`.
 
 pub use dpd_core::{
     boundary, checkpoint, error, flow, init, neighbour, observe, pairs, params, reference, rng,

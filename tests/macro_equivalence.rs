@@ -148,6 +148,45 @@ fn program_exposes_stages_symmetry_and_analysis() {
     );
 }
 
+/// The program a generated scheme carries is the one the scheme compiler makes of its source:
+/// the same stages, coefficients (bits and exact values), streams and sweep orders.
+#[test]
+fn generated_program_is_the_compiled_program() {
+    let cases: [(&dyn Scheme, &str, bool); 6] = [
+        (&dpd_scheme!("ABOBA"), "ABOBA", false),
+        (&dpd_scheme!("BAOOAB"), "BAOOAB", false),
+        (&dpd_scheme!("ObBAB"), "ObBAB", false),
+        (
+            &dpd_scheme!("F(7/24) A(2/3) F(3/4) A(-2/3) F(-1/24) A(1)"),
+            "F(7/24) A(2/3) F(3/4) A(-2/3) F(-1/24) A(1)",
+            false,
+        ),
+        (
+            &dpd_scheme!("S(x1) S(x0) S(x1) O"),
+            "S(x1) S(x0) S(x1) O",
+            false,
+        ),
+        (
+            &dpd_scheme!("S(x1) S(-x0) S(x1) Ob", allow_inconsistent),
+            "S(x1) S(-x0) S(x1) Ob",
+            true,
+        ),
+    ];
+    for (scheme, source, allow_inconsistent) in cases {
+        let compiled = dpd::lang::compile_with(source, &Options { allow_inconsistent }).unwrap();
+        let carried = scheme.program().unwrap();
+        assert_eq!(*carried, compiled, "{source}");
+        let bits = |p: &dpd::Program| -> Vec<u64> {
+            p.stages
+                .iter()
+                .chain(&p.unmerged_stages)
+                .map(|s| s.coeff.value.to_bits())
+                .collect()
+        };
+        assert_eq!(bits(carried), bits(&compiled), "{source}");
+    }
+}
+
 #[test]
 fn allow_inconsistent_reproduces_m_shardlow_1() {
     let m1 = dpd_scheme!("S(x1) S(-x0) S(x1) Ob", allow_inconsistent);

@@ -4,18 +4,17 @@
 pub use crate::flow::{bbk, drift, full_force, kick, ou, trotter};
 pub use crate::scheme::Scheme;
 pub use crate::system::System;
-pub use dpd_ir::{Program, SweepOrder};
+pub use dpd_ir::{Flow, Program, Stage, SweepOrder};
 
-/// Compiles the source of a `dpd_scheme!` again at run time, for `Scheme::program`. The macro
-/// compiled the same source with the same options at expansion time, so this cannot fail
-/// unless the macro and the run time use different versions of the scheme language.
-pub fn compile_program(src: &str, allow_inconsistent: bool) -> Program {
-    dpd_ir::compile_with(src, &dpd_ir::Options { allow_inconsistent }).unwrap_or_else(|errors| {
-        let errors: Vec<String> = errors.iter().map(ToString::to_string).collect();
-        panic!(
-            "dpd_scheme!({src:?}) compiled at expansion time but fails at run time ({}): \
-             the macro and the run time use different versions of dpd-ir",
-            errors.join("; ")
-        )
-    })
+/// A coefficient as the macro writes it into the generated program: the bits of the `f64`
+/// the step uses and, where the coefficient is rational, its exact value as `"p/q"` (the
+/// `Display` form of the rational the scheme compiler computed).
+pub fn coeff(bits: u64, exact: Option<&str>) -> dpd_ir::Coeff {
+    dpd_ir::Coeff {
+        value: f64::from_bits(bits),
+        exact: exact.map(|r| {
+            r.parse()
+                .unwrap_or_else(|_| panic!("dpd_scheme! wrote {r:?}, which is not a rational"))
+        }),
+    }
 }

@@ -2,7 +2,7 @@
 //! random numbers, the exact and explicit sub-flows that splitting schemes are built from,
 //! observables and checkpoints.
 //!
-//! Conventions used throughout (see `../shared/docs/algorithms.md`):
+//! Conventions used throughout (see `docs/algorithms.md` in the repository):
 //! - Reduced DPD units: lengths in units of the cutoff's unit, energies in units of k_B T's unit,
 //!   masses in the unit of the particle mass. Nothing is rescaled internally.
 //! - `q` positions (wrapped into the periodic box), `p` momenta, `m` masses; for a pair

@@ -1,9 +1,9 @@
 //! The generated scheme: a zero-sized type whose `step` calls the sub-flows in a straight line.
 
-use dpd_ir::{Flow, Stage, SweepOrder};
+use dpd_ir::{Flow, Program, Stage, SweepOrder};
 use proc_macro2::{Literal, Span, TokenStream};
 use quote::quote;
-use syn::LitInt;
+use syn::{Ident, LitInt};
 
 use crate::parse::Input;
 use crate::valid;
@@ -14,9 +14,8 @@ pub fn expand(input: &Input, rt: &TokenStream) -> syn::Result<TokenStream> {
     let program = input.compile()?;
     valid::check(&program, &input.args)?;
     let name = input.args.name.as_ref().unwrap_or(&input.source).value();
-    let source = &input.source;
-    let allow_inconsistent = input.args.allow_inconsistent;
     let stages = program.stages.iter().map(|s| stage(s, rt));
+    let program = program_value(&program, rt);
     Ok(scheme_value(
         rt,
         &quote! {
@@ -29,9 +28,7 @@ pub fn expand(input: &Input, rt: &TokenStream) -> syn::Result<TokenStream> {
             }
             fn program(&self) -> ::core::option::Option<&#rt::Program> {
                 static PROGRAM: ::std::sync::OnceLock<#rt::Program> = ::std::sync::OnceLock::new();
-                ::core::option::Option::Some(
-                    PROGRAM.get_or_init(|| #rt::compile_program(#source, #allow_inconsistent)),
-                )
+                ::core::option::Option::Some(PROGRAM.get_or_init(|| #program))
             }
         },
     ))
@@ -52,19 +49,63 @@ pub fn scheme_value(rt: &TokenStream, methods: &TokenStream) -> TokenStream {
     }
 }
 
+/// The program the macro compiled, written out as data: `Scheme::program` builds it from
+/// these constants on first use instead of compiling the source again.
+fn program_value(program: &Program, rt: &TokenStream) -> TokenStream {
+    let source = &program.source;
+    let stages = program.stages.iter().map(|s| stage_value(s, rt));
+    let unmerged = program.unmerged_stages.iter().map(|s| stage_value(s, rt));
+    quote! {
+        #rt::Program {
+            source: ::std::string::String::from(#source),
+            stages: ::std::vec![#(#stages),*],
+            unmerged_stages: ::std::vec![#(#unmerged),*],
+        }
+    }
+}
+
+/// One stage as a `Stage` value, the coefficient bit for bit and its exact value as text.
+fn stage_value(stage: &Stage, rt: &TokenStream) -> TokenStream {
+    let bits = coeff_bits(stage.coeff.value);
+    let exact = match &stage.coeff.exact {
+        Some(r) => {
+            let r = r.to_string();
+            quote!(::core::option::Option::Some(#r))
+        }
+        None => quote!(::core::option::Option::None),
+    };
+    let flow = Ident::new(&format!("{:?}", stage.flow), Span::call_site());
+    let stream = Literal::u8_suffixed(stage.stream);
+    let order = sweep_order(stage.order, rt);
+    quote! {
+        #rt::Stage {
+            flow: #rt::Flow::#flow,
+            coeff: #rt::coeff(#bits, #exact),
+            stream: #stream,
+            order: #order,
+        }
+    }
+}
+
+/// `c` as a `u64` literal of its bits.
+fn coeff_bits(c: f64) -> LitInt {
+    LitInt::new(&format!("{:#018x}u64", c.to_bits()), Span::call_site())
+}
+
+fn sweep_order(order: SweepOrder, rt: &TokenStream) -> TokenStream {
+    match order {
+        SweepOrder::Forward => quote!(#rt::SweepOrder::Forward),
+        SweepOrder::Reverse => quote!(#rt::SweepOrder::Reverse),
+    }
+}
+
 /// One stage as the call `dpd_core::scheme::apply_stage` makes: the same function with
 /// `h = c * dt`, `c` bit for bit the program's `f64`.
 fn stage(stage: &Stage, rt: &TokenStream) -> TokenStream {
-    let bits = LitInt::new(
-        &format!("{:#018x}u64", stage.coeff.value.to_bits()),
-        Span::call_site(),
-    );
+    let bits = coeff_bits(stage.coeff.value);
     let h = quote!(::core::primitive::f64::from_bits(#bits) * dt);
     let stream = Literal::u8_suffixed(stage.stream);
-    let order = match stage.order {
-        SweepOrder::Forward => quote!(#rt::SweepOrder::Forward),
-        SweepOrder::Reverse => quote!(#rt::SweepOrder::Reverse),
-    };
+    let order = sweep_order(stage.order, rt);
     match stage.flow {
         Flow::A => quote!(#rt::drift(sys, #h);),
         Flow::B => quote!(#rt::kick(sys, #h);),

@@ -15,11 +15,9 @@ use dpd_core::{Scheme, System};
 ///                A: q += dt v_new
 /// ```
 ///
-/// One force and one pair-distance evaluation per step (forces, dissipative couplings and rates
-/// at the start of the step). The source leaves the position update implicit; the drift with
-/// the new velocity makes the deterministic part (`gamma = 0`, where `c = 0`) the symplectic
-/// Euler method: deterministic order 1, not symmetric. The invariant-measure criterion does
-/// not apply. Source: N. Phan-Thien, N. Mai-Duy, D. Pan and B. C. Khoo, "Exponential-time
+/// Forces, dissipative couplings and rates are evaluated at the start of the step. The source
+/// leaves the position update implicit; the drift with the new velocity makes the
+/// deterministic part (`gamma = 0`, where `c = 0`) the symplectic Euler method. Source: N. Phan-Thien, N. Mai-Duy, D. Pan and B. C. Khoo, "Exponential-time
 /// differencing schemes for low-mass DPD systems", Comput. Phys. Commun. 185, 229 (2014),
 /// who recommend `c dt < 1`.
 #[derive(Clone, Copy, Debug, Default)]
@@ -45,8 +43,7 @@ impl Scheme for Setd {
 ///                A:  q += dt v_new
 /// ```
 ///
-/// One force and one pair-distance evaluation per step; deterministic order 1, not symmetric;
-/// the invariant-measure criterion does not apply. Source: Phan-Thien, Mai-Duy, Pan and Khoo,
+/// Source: Phan-Thien, Mai-Duy, Pan and Khoo,
 /// Comput. Phys. Commun. 185, 229 (2014).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Msetd;

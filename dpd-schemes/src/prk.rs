@@ -1,6 +1,6 @@
 //! Third-order partitioned Runge-Kutta schemes: the published full-force form with the noise
 //! frozen within the step, and forms that compose the same Hamiltonian sequence with the exact
-//! pairwise O. All are pairwise: total momentum is conserved to rounding error.
+//! pairwise O. Their cost and orders are claimed in the [`registry`](crate::registry).
 //!
 //! A table `(b1, b2, b3; bh1, bh2, bh3)` is the step
 //! `K(b1) A(bh1) K(b2) A(bh2) K(b3) A(bh3)`; its order-3 conditions are the published
@@ -15,15 +15,13 @@ use dpd_macros::dpd_scheme;
 /// F(7/24) A(2/3) F(3/4) A(-2/3) F(-1/24) A(1)      all F on one random stream
 /// ```
 ///
-/// Three force and three pair-distance evaluations per step. Deterministic order 3; the
-/// invariant-measure criterion does not apply (F is not an exact flow). Sources: R. D. Ruth,
+/// The invariant-measure criterion does not apply (F is not an exact flow). Sources: R. D. Ruth,
 /// IEEE Trans. Nucl. Sci. 30, 2669 (1983); for DPD, "Temperature error reduction of DPD fluid
 /// by using partitioned Runge-Kutta time integration scheme", Fluids 4, 156 (2019).
 pub fn prk3_ruth() -> impl Scheme + Copy + Send + Sync + 'static {
     dpd_scheme!(
         "prk(b = [7/24, 3/4, -1/24], bh = [2/3, -2/3, 1])",
-        name = "prk3-ruth",
-        order >= 3
+        name = "prk3-ruth"
     )
 }
 
@@ -34,15 +32,13 @@ pub fn prk3_ruth() -> impl Scheme + Copy + Send + Sync + 'static {
 /// b1 = (-7 + r)/12, b3 = (8 - r)/12, bh1 = (2/9)(1 + t), bh2 = (2/9)(1 - t)
 /// ```
 ///
-/// Three force and three pair-distance evaluations per step. Deterministic order 3; the
-/// invariant-measure criterion does not apply. Source: Iwatsu's third-order solutions as used
+/// Source: Iwatsu's third-order solutions as used
 /// for DPD in Fluids 4, 156 (2019).
 pub fn prk3_iwatsu_a() -> impl Scheme + Copy + Send + Sync + 'static {
     dpd_scheme!(
         "prk(b = [(-7 + sqrt(209/2))/12, 11/12, (8 - sqrt(209/2))/12], \
              bh = [(2/9)(1 + sqrt(38/11)), (2/9)(1 - sqrt(38/11)), 5/9])",
-        name = "prk3-iwatsu-a",
-        order >= 3
+        name = "prk3-iwatsu-a"
     )
 }
 
@@ -53,14 +49,12 @@ pub fn prk3_iwatsu_a() -> impl Scheme + Copy + Send + Sync + 'static {
 /// b1 = -(7 + r)/12, b3 = (8 + r)/12, bh1 = (2/9)(1 - t), bh2 = (2/9)(1 + t)
 /// ```
 ///
-/// Three force and three pair-distance evaluations per step. Deterministic order 3; the
-/// invariant-measure criterion does not apply. Source: as [`prk3_iwatsu_a`].
+/// Source: as [`prk3_iwatsu_a`].
 pub fn prk3_iwatsu_b() -> impl Scheme + Copy + Send + Sync + 'static {
     dpd_scheme!(
         "prk(b = [-(7 + sqrt(209/2))/12, 11/12, (8 + sqrt(209/2))/12], \
              bh = [(2/9)(1 - sqrt(38/11)), (2/9)(1 + sqrt(38/11)), 5/9])",
-        name = "prk3-iwatsu-b",
-        order >= 3
+        name = "prk3-iwatsu-b"
     )
 }
 
@@ -70,15 +64,12 @@ pub fn prk3_iwatsu_b() -> impl Scheme + Copy + Send + Sync + 'static {
 /// B(7/24) A(2/3) B(3/4) A(-2/3) B(-1/24) A(1) O(1)
 /// ```
 ///
-/// Three force and three pair-distance evaluations per step. Deterministic order 3 and, by the
-/// left-ideal criterion, invariant measure order 3; not symmetric. Source: this crate, from
+/// Source: this crate, from
 /// Ruth (1983) and the exact O of algorithms.md section 2.
 pub fn prk3_ruth_o() -> impl Scheme + Copy + Send + Sync + 'static {
     dpd_scheme!(
         "prk(b = [7/24, 3/4, -1/24], bh = [2/3, -2/3, 1], kick = B) O",
-        name = "prk3-ruth-o",
-        order >= 3,
-        invariant_order >= 3
+        name = "prk3-ruth-o"
     )
 }
 
@@ -90,18 +81,15 @@ pub fn prk3_ruth_o() -> impl Scheme + Copy + Send + Sync + 'static {
 ///                        R*(c) = A(c) B(-c/24) A(-2c/3) B(3c/4) A(2c/3) B(7c/24)
 /// ```
 ///
-/// A third-order method composed with its adjoint is symmetric, hence of even order: the
-/// Hamiltonian part is fourth order and the criterion gives invariant measure order 4. Five
-/// force and six pair-distance evaluations per step (the last kick's forces are reused by the
-/// first kick of the next step; the sweep needs the geometry at the middle positions). Source:
+/// A third-order method composed with its adjoint is symmetric, hence of even order, which
+/// raises both orders by one. The last kick's forces are reused by the first kick of the next
+/// step; the sweep needs the geometry at the middle positions. Source:
 /// this crate, from Ruth (1983) and the exact O of algorithms.md section 2.
 pub fn prk3_ruth_sym() -> impl Scheme + Copy + Send + Sync + 'static {
     dpd_scheme!(
         "def R(c) = B(7c/24) A(2c/3) B(3c/4) A(-2c/3) B(-c/24) A(c); \
          def Radj(c) = A(c) B(-c/24) A(-2c/3) B(3c/4) A(2c/3) B(7c/24); \
          R(1/2) O Radj(1/2)",
-        name = "prk3-ruth-sym",
-        order >= 4,
-        invariant_order >= 4
+        name = "prk3-ruth-sym"
     )
 }

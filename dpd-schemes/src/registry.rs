@@ -1,5 +1,6 @@
 //! The named schemes, looked up by case-insensitive name or alias, with what each costs and
-//! what the order analysis proves about it.
+//! what its orders are: the one place these claims are written (the scheme docs do not repeat
+//! them).
 
 use std::fmt;
 use std::sync::OnceLock;
@@ -11,7 +12,7 @@ use thiserror::Error;
 
 use crate::{composition, exponential, langevin, prk, shardlow, trotter, verlet};
 
-/// What an entry's documentation claims about its scheme.
+/// What the catalogue claims about a scheme, written once here.
 ///
 /// Splitting schemes are listed with what the analysis of their program computes, and a test
 /// checks that it equals these claims. Hand-written schemes are listed with their claims, and
@@ -88,7 +89,7 @@ impl Entry {
         self.hand_written.is_some()
     }
 
-    /// What the documentation claims (checked by the tests).
+    /// What the catalogue claims about the scheme (checked by `tests/claims.rs`).
     pub fn claims(&self) -> &Claims {
         &self.claims
     }

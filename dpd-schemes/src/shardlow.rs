@@ -1,6 +1,6 @@
 //! Shardlow's splittings with the BBK pair update, and the M-Shardlow compositions that put a
-//! Yoshida triple jump in front of the sweep. All are pairwise: total momentum is conserved to
-//! rounding error.
+//! Yoshida triple jump in front of the sweep. Their cost and orders are claimed in the
+//! [`registry`](crate::registry).
 
 use dpd_core::Scheme;
 use dpd_macros::dpd_scheme;
@@ -11,12 +11,11 @@ use dpd_macros::dpd_scheme;
 /// Ob(1) B(1/2) A(1) B(1/2)
 /// ```
 ///
-/// One force and one pair-distance evaluation per step. Deterministic order 2; invariant
-/// measure order 2 (the BBK update is only weakly second order, its error term is the first
-/// that survives). Source: T. Shardlow, "Splitting for dissipative particle dynamics", SIAM J.
+/// The BBK update is only weakly second order: its error term is the first the invariant-measure
+/// analysis finds. Source: T. Shardlow, "Splitting for dissipative particle dynamics", SIAM J.
 /// Sci. Comput. 24, 1267 (2003).
 pub fn dpd_s1() -> impl Scheme + Copy + Send + Sync + 'static {
-    dpd_scheme!("ObBAB", name = "dpd-s1", order >= 2, invariant_order >= 2)
+    dpd_scheme!("ObBAB", name = "dpd-s1")
 }
 
 /// DPD-S2: the BBK sweep split around velocity Verlet, the second half reversed.
@@ -25,15 +24,9 @@ pub fn dpd_s1() -> impl Scheme + Copy + Send + Sync + 'static {
 /// Ob>(1/2) B(1/2) A(1) B(1/2) Ob<(1/2)
 /// ```
 ///
-/// One force and one pair-distance evaluation per step. Deterministic order 2, invariant
-/// measure order 2, symmetric. Source: Shardlow (2003).
+/// Source: Shardlow (2003).
 pub fn dpd_s2() -> impl Scheme + Copy + Send + Sync + 'static {
-    dpd_scheme!(
-        "Ob(1/2) B A B Ob(1/2)",
-        name = "dpd-s2",
-        order >= 2,
-        invariant_order >= 2
-    )
+    dpd_scheme!("Ob(1/2) B A B Ob(1/2)", name = "dpd-s2")
 }
 
 /// M-Shardlow-1 as published: the Yoshida triple jump with the wrong sign of the inner step,
@@ -46,8 +39,7 @@ pub fn dpd_s2() -> impl Scheme + Copy + Send + Sync + 'static {
 ///
 /// INCONSISTENT: the A and B coefficients sum to `2 x1 - x0 = 4.405`, not 1, so the
 /// Hamiltonian part runs 4.4 times too long per step and the scheme has no order. Kept (with
-/// `allow_inconsistent`) to reproduce the published error. Three force and three
-/// pair-distance evaluations per step. Source: Yamada et al., as quoted in algorithms.md
+/// `allow_inconsistent`) to reproduce the published error. Source: Yamada et al., as quoted in algorithms.md
 /// section 3.
 pub fn m_shardlow_1() -> impl Scheme + Copy + Send + Sync + 'static {
     dpd_scheme!(
@@ -65,14 +57,9 @@ pub fn m_shardlow_1() -> impl Scheme + Copy + Send + Sync + 'static {
 /// x1 = 1/(2 - 2^(1/3)),  x0 = -2^(1/3)/(2 - 2^(1/3))
 /// ```
 ///
-/// Three force and three pair-distance evaluations per step. Deterministic order 4; invariant
-/// measure order 2 (the BBK error term survives). Sources: Yamada et al. (algorithms.md
+/// The triple jump raises the order of the Hamiltonian part only: the BBK error term still
+/// bounds the invariant-measure order. Sources: Yamada et al. (algorithms.md
 /// section 3); H. Yoshida, Phys. Lett. A 150, 262 (1990).
 pub fn m_shardlow_2() -> impl Scheme + Copy + Send + Sync + 'static {
-    dpd_scheme!(
-        "S(x1) S(x0) S(x1) Ob",
-        name = "m-shardlow-2",
-        order >= 4,
-        invariant_order >= 2
-    )
+    dpd_scheme!("S(x1) S(x0) S(x1) Ob", name = "m-shardlow-2")
 }

@@ -13,12 +13,11 @@ use dpd_macros::dpd_scheme;
 /// ```
 ///
 /// The full force evaluated at the end of a step (fresh noise) is reused by the first half-kick
-/// of the next, so one force and one pair-distance evaluation per step. Deterministic order 2;
-/// the invariant-measure criterion does not apply (F is not an exact flow; in theory first order
-/// for the invariant measure). Source: R. D. Groot and P. B. Warren, J. Chem. Phys. 107, 4423
+/// of the next. The invariant-measure criterion does not apply (F is not an exact flow; in
+/// theory first order for the invariant measure). Source: R. D. Groot and P. B. Warren, J. Chem. Phys. 107, 4423
 /// (1997). Bit for bit the same trajectory as `dpd_core::reference::VelocityVerlet`.
 pub fn vv() -> impl Scheme + Copy + Send + Sync + 'static {
-    dpd_scheme!("F(1/2) A F(1/2)", name = "vv", order >= 2)
+    dpd_scheme!("F(1/2) A F(1/2)", name = "vv")
 }
 
 /// Groot and Warren's modified velocity Verlet with a general `lambda`, written with `a = F/m`:
@@ -30,12 +29,11 @@ pub fn vv() -> impl Scheme + Copy + Send + Sync + 'static {
 /// v    += dt/2 (a + a~)
 /// ```
 ///
-/// and `a~` is reused as `a` by the next step: one force and one pair-distance evaluation per
-/// step. Implemented on the core sub-flows as `F(1/2) A(1) F(1/2)` (velocity Verlet) whose
+/// and `a~` is reused as `a` by the next step. Implemented on the core sub-flows as `F(1/2) A(1) F(1/2)` (velocity Verlet) whose
 /// second force is evaluated at the momenta shifted by `(lambda - 1/2) dt F`, the shift being
 /// taken back after the kick. For `lambda = 1/2` there is no shift and the step is bitwise
-/// [`vv`]. Deterministic order 2 (at `gamma = 0` the force does not depend on `v~`), not
-/// symmetric for `lambda != 1/2`; the invariant-measure criterion does not apply. Source:
+/// [`vv`]. At `gamma = 0` the force does not depend on `v~`, so the deterministic order is
+/// velocity Verlet's. Source:
 /// R. D. Groot and P. B. Warren, J. Chem. Phys. 107, 4423 (1997), who recommend
 /// `lambda = 0.65` at density 3, `sigma = 3`.
 #[derive(Clone, Debug, PartialEq)]
