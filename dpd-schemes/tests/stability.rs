@@ -59,6 +59,21 @@ fn reduced_matrix_completes_or_reports_for_every_scheme() {
     // a null may stand only for a temperature an insane run reports as non-finite, and every
     // reason must say something.
     let json = serde_json::to_value(&records).unwrap();
+    // The walk finds what a wrong implementation would write: a NaN error (null) and an empty
+    // reason, each with the record it is in.
+    let mut planted = Vec::new();
+    nulls_and_empty_strings(
+        &serde_json::json!([{"outcome": {"kinetic_error": f64::NAN}}, {"reason": ""}]),
+        String::new(),
+        &mut planted,
+    );
+    assert_eq!(
+        planted,
+        [
+            ("/0/outcome/kinetic_error".to_string(), 0),
+            ("/1/reason".to_string(), 1)
+        ]
+    );
     let mut found = Vec::new();
     nulls_and_empty_strings(&json, String::new(), &mut found);
     let allowed = |path: &str| {
