@@ -1,0 +1,158 @@
+//! The Python module `dpd`: the order analysis, the registry, a steppable simulation and the
+//! dt sweep, as thin wrappers over the crates the `dpd` program uses. Results are the same
+//! JSON values the program prints, converted to Python objects; invalid input raises
+//! `ValueError` with the program's message.
+
+mod simulation;
+mod wait;
+
+use dpd_measure::sweep::{load_finished, run_sweep, Hooks};
+use dpd_measure::{Control, Observable, Overrides, Scene, SweepOverrides, SweepResults};
+use dpd_schemes::check::check as check_scheme;
+use dpd_schemes::registry::{entries, Row};
+use pyo3::exceptions::{PyRuntimeError, PyRuntimeWarning, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use pythonize::{depythonize, pythonize};
+use std::path::PathBuf;
+use std::sync::atomic::AtomicBool;
+use std::sync::Mutex;
+
+pyo3::create_exception!(
+    dpd,
+    BlowUpError,
+    PyRuntimeError,
+    "A step produced a non-finite value or moved a particle too far; the simulation stays \
+     in the state before that step."
+);
+
+/// `ValueError` carrying `e`'s message.
+fn invalid(e: impl ToString) -> PyErr {
+    PyValueError::new_err(e.to_string())
+}
+
+/// `value` as Python objects (dicts, lists, floats, None), as `serde_json` would print it.
+fn to_python<T: serde::Serialize>(py: Python<'_>, value: &T) -> PyResult<PyObject> {
+    Ok(pythonize(py, value)
+        .map_err(|e| PyRuntimeError::new_err(e.to_string()))?
+        .unbind())
+}
+
+/// The scene keys of `kwargs` (names of `dpd run`'s flags, `scene` a TOML file) applied to
+/// the scene file or the default scene, validated.
+fn scene_of(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Scene> {
+    let overrides: Overrides = match kwargs {
+        None => Overrides::default(),
+        Some(kwargs) => {
+            let kwargs = kwargs.copy()?;
+            if let Some(path) = kwargs.get_item("scene")? {
+                let os = kwargs.py().import("os")?;
+                kwargs.set_item("scene", os.call_method1("fspath", (path,))?)?;
+            }
+            depythonize(kwargs.as_any()).map_err(|e| invalid(format!("scene keys: {e}")))?
+        }
+    };
+    Scene::resolve(&overrides).map_err(invalid)
+}
+
+/// check(scheme)
+/// --
+///
+/// The order analysis of a registry name or a scheme string: the dict of `dpd check --json`.
+#[pyfunction]
+fn check(py: Python<'_>, scheme: &str) -> PyResult<PyObject> {
+    to_python(py, &check_scheme(scheme).map_err(invalid)?)
+}
+
+/// schemes()
+/// --
+///
+/// The registry of named schemes: the list of `dpd schemes --json`.
+#[pyfunction]
+fn schemes(py: Python<'_>) -> PyResult<PyObject> {
+    let rows: Vec<&Row> = entries().iter().map(|e| e.row()).collect();
+    to_python(py, &rows)
+}
+
+/// Schemes over a geometric range of dt, as `dpd sweep`: returns the results file's content
+/// (scene, points, rows, baseline, summary, complete) as Python objects. `json` names a
+/// results file written after every finished point and read back to resume (unless
+/// `fresh`); the other keywords are scene keys, as for `Simulation`. The GIL is released
+/// while the runs go on; Ctrl-C stops them and raises `KeyboardInterrupt` (the finished
+/// points are in `json`).
+#[pyfunction]
+#[pyo3(signature = (
+    *, schemes=None, dt_min=None, dt_max=None, dt_factor=None, reference=None,
+    observable=None, json=None, fresh=false, **scene
+))]
+#[allow(clippy::too_many_arguments)]
+fn sweep(
+    py: Python<'_>,
+    schemes: Option<Vec<String>>,
+    dt_min: Option<f64>,
+    dt_max: Option<f64>,
+    dt_factor: Option<f64>,
+    reference: Option<String>,
+    observable: Option<Bound<'_, PyAny>>,
+    json: Option<PathBuf>,
+    fresh: bool,
+    scene: Option<&Bound<'_, PyDict>>,
+) -> PyResult<PyObject> {
+    let observable: Option<Observable> = observable
+        .map(|o| depythonize(&o))
+        .transpose()
+        .map_err(|e| invalid(format!("observable: {e}")))?;
+    let mut scene = scene_of(scene)?;
+    let keys = SweepOverrides {
+        schemes,
+        dt_min,
+        dt_max,
+        dt_factor,
+        reference,
+        observable,
+    };
+    scene.apply_sweep(&keys).map_err(invalid)?;
+    let finished = match &json {
+        Some(path) if !fresh => load_finished(path, &scene).map_err(invalid)?,
+        _ => Vec::new(),
+    };
+    let write_error = Mutex::new(None);
+    let save = |r: &SweepResults| {
+        if let Some(path) = &json {
+            if let Err(e) = r.write_json(path) {
+                let mut first = write_error.lock().unwrap_or_else(|e| e.into_inner());
+                first.get_or_insert(format!("cannot write {}: {e}", path.display()));
+            }
+        }
+    };
+    let stop = AtomicBool::new(false);
+    let hooks = Hooks {
+        control: Control {
+            stop: &stop,
+            progress: &|_| {},
+        },
+        on_point: &save,
+    };
+    let results =
+        wait::interruptible(py, &stop, || run_sweep(&scene, finished, hooks))?.map_err(invalid)?;
+    if let Some(message) = write_error.into_inner().unwrap_or_else(|e| e.into_inner()) {
+        PyErr::warn(
+            py,
+            &py.get_type::<PyRuntimeWarning>(),
+            &std::ffi::CString::new(message)?,
+            0,
+        )?;
+    }
+    to_python(py, &results)
+}
+
+/// Compose, check and run splitting integrators for dissipative particle dynamics.
+#[pymodule]
+fn dpd(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(check, m)?)?;
+    m.add_function(wrap_pyfunction!(schemes, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep, m)?)?;
+    m.add_class::<simulation::Simulation>()?;
+    m.add("BlowUpError", m.py().get_type::<BlowUpError>())?;
+    Ok(())
+}

@@ -1,0 +1,151 @@
+"""The Python module against known answers of the analysis, the registry and the physics."""
+
+import threading
+
+import numpy as np
+import pytest
+
+import dpd
+
+
+def test_check_reports_the_analysis_of_names_and_strings():
+    c = dpd.check("BAOOAB")
+    assert (c["consistent"], c["symmetric"], c["deterministic_order"]) == (True, True, 2)
+    assert c["invariant_measure_order"] == 2
+    assert c["coefficient_sums"]["a"] == 1.0
+    abo = dpd.check("ABO")
+    assert (abo["invariant_measure_order"], abo["symmetric"]) == (1, False)
+    # As published, M-Shardlow-1 is inconsistent: reported, not refused.
+    assert dpd.check("m-shardlow-1")["consistent"] is False
+
+
+def test_an_invalid_scheme_is_a_value_error_with_the_cli_message():
+    with pytest.raises(ValueError, match=r'^invalid scheme = "ABQ": unknown scheme'):
+        dpd.check("ABQ")
+
+
+def test_the_registry_agrees_with_the_check_of_each_name():
+    rows = dpd.schemes()
+    names = {r["name"] for r in rows}
+    assert {"vv", "dpd-s1", "aboba", "baoab"} <= names
+    for r in rows:
+        c = dpd.check(r["name"])
+        assert c["deterministic_order"] == r["deterministic_order"], r["name"]
+        assert c["force_evaluations_per_step"] == r["force_evaluations_per_step"], r["name"]
+
+
+def test_arrays_have_one_row_per_particle_inside_the_box():
+    sim = dpd.Simulation(scheme="aboba", dt=0.05, n=200, seed=3)
+    q, v = sim.positions, sim.velocities
+    assert q.shape == v.shape == (200, 3) and q.dtype == np.float64
+    assert np.all(q >= 0.0) and np.all(q < np.array(sim.box_lengths))
+    assert (sim.step, sim.time) == (0, 0.0)
+
+
+def test_velocities_are_momenta_over_mass():
+    # With m = 2, k_B T_K = m sum v.v / (3 (N - 1)) computed here from the velocities must be
+    # the module's kinetic temperature to rounding; p in place of v would be off by 4.
+    sim = dpd.Simulation(scheme="aboba", dt=0.05, n=300, mass=2.0, seed=1)
+    sim.run(steps=20)
+    v = sim.velocities
+    tk = 2.0 * np.sum(v * v) / (3 * (len(v) - 1))
+    assert tk == pytest.approx(sim.observables()["kinetic_temperature"], rel=1e-12)
+
+
+def test_runs_in_pieces_are_bitwise_one_run():
+    whole = dpd.Simulation(scheme="baoab", dt=0.04, n=200, seed=7)
+    pieces = dpd.Simulation(scheme="baoab", dt=0.04, n=200, seed=7)
+    whole.run(steps=130)
+    for steps in (1, 49, 80):
+        pieces.run(steps=steps)
+    assert pieces.step == 130 and pieces.time == pytest.approx(130 * 0.04)
+    assert np.array_equal(whole.positions, pieces.positions)
+    assert np.array_equal(whole.velocities, pieces.velocities)
+
+
+def test_the_thermostat_holds_the_temperature():
+    # 500 particles at k_B T = 1: one sample of T_K scatters by sqrt(2 / (3 N)) = 0.037; the mean
+    # of 20 samples 0.5 time units apart (decorrelated by gamma = 4.5) by about 0.01, and
+    # ABOBA's bias at dt = 0.05 is below 1 %. 0.05 is five such deviations; a missing or wrong
+    # thermostat (the start is at T = 1, the conservative force heats an unthermostatted box)
+    # or a wrong mass in T_K misses it.
+    sim = dpd.Simulation(scheme="aboba", dt=0.05, n=500, gamma=4.5, seed=1)
+    sim.run(steps=200)
+    temps, config = [], []
+    for _ in range(20):
+        sim.run(steps=10)
+        o = sim.observables()
+        temps.append(o["kinetic_temperature"])
+        config.append((o["config_numerator"], o["config_denominator"]))
+    assert np.mean(temps) == pytest.approx(1.0, abs=0.05)
+    num, den = np.sum(config, axis=0)
+    assert num / den == pytest.approx(1.0, abs=0.05)
+    assert set(o) >= {"potential_energy", "pressure", "configurational_temperature", "step"}
+
+
+def test_bad_scene_keys_are_value_errors_naming_the_key():
+    with pytest.raises(ValueError, match=r"invalid gamma = -1: must be finite and >= 0"):
+        dpd.Simulation(gamma=-1.0)
+    with pytest.raises(ValueError, match="unknown field `gama`"):
+        dpd.Simulation(gama=4.5)
+    with pytest.raises(ValueError, match=r'^invalid scheme = "ABQ"'):
+        dpd.Simulation(scheme="ABQ")
+
+
+def test_a_blow_up_raises_and_keeps_the_last_good_state():
+    sim = dpd.Simulation(scheme="vv", dt=2.0, n=100, seed=1)
+    with pytest.raises(dpd.BlowUpError, match="blow-up"):
+        sim.run(steps=100)
+    assert np.all(np.isfinite(sim.positions)) and sim.step < 100
+
+
+def test_a_scene_file_gives_the_keys_the_arguments_do_not(tmp_path):
+    scene = tmp_path / "scene.toml"
+    scene.write_text('scheme = "vv"\nn = 100\ngamma = 9.0\n')
+    sim = dpd.Simulation(scene=scene, gamma=2.0)
+    assert (sim.scene["scheme"], sim.scene["n"], sim.scene["gamma"]) == ("vv", 100, 2.0)
+
+
+def test_run_releases_the_gil():
+    # A Python thread counts while run() steps; with the GIL held it could not count at all.
+    sim = dpd.Simulation(scheme="aboba", dt=0.05, n=500, seed=1, threads=1)
+    ticks, running = [0], threading.Event()
+
+    def count():
+        running.wait()
+        while running.is_set():
+            ticks[0] += 1
+
+    counter = threading.Thread(target=count)
+    counter.start()
+    running.set()
+    before = ticks[0]
+    sim.run(steps=400)
+    during = ticks[0] - before
+    running.clear()
+    counter.join()
+    assert during > 1000
+
+
+def test_a_sweep_returns_the_results_file_and_resumes_from_it(tmp_path):
+    keys = dict(n=100, time=2.0, schemes=["aboba", "vv"], dt_min=0.02, dt_max=0.04,
+                dt_factor=2.0, threads=1)
+    results = tmp_path / "sweep.json"
+    r = dpd.sweep(json=results, **keys)
+    assert r["complete"] and [s["scheme"] for s in r["summary"]] == ["aboba", "vv"]
+    # Two schemes at two dt; the baseline (aboba at dt_min) is among them.
+    assert len(r["points"]) == 4 and len(r["rows"]) == 4
+    assert r["scene"]["sweep"]["dt_max"] == 0.04
+    # Read back, not run again: a new run would measure another ms_per_step.
+    again = dpd.sweep(json=results, **keys)
+    job = lambda p: (p["scheme"], p["dt"], p["seed"], p["samples"])
+    assert [job(p) for p in again["points"]] == [job(p) for p in r["points"]]
+    cost = [p["ms_per_step"] for p in r["points"]]
+    assert [p["ms_per_step"] for p in again["points"]] == pytest.approx(cost, rel=1e-12)
+
+
+def test_an_invalid_sweep_is_a_value_error():
+    with pytest.raises(ValueError, match="sweep.reference"):
+        dpd.sweep(n=100, schemes=["aboba"], reference="vv")
+    with pytest.raises(ValueError, match="observable"):
+        dpd.sweep(n=100, observable="pressure")
