@@ -1,0 +1,229 @@
+//! Filling the table from the neighbour list or its grid's scan.
+
+use crate::boundary::{LeesEdwards, PeriodicBox};
+use crate::chunked;
+use crate::neighbour::{Hits, VerletList};
+use crate::params::Params;
+use crate::walls::FrozenWalls;
+use crate::Vec3;
+
+use super::{on_all_threads, Bound, Pair, PairTable, Run};
+
+impl PairTable {
+    /// Refill with the pairs of `list` that interact at positions `q`, keeping its order: from
+    /// the list's candidates, or with skin 0 straight from the scan of its grid (then `q` must
+    /// be in the cell order of its last build, as a [`crate::System`] keeps it).
+    ///
+    /// Coincident particles (`r = 0`) have no defined direction; such a pair is left out, so it
+    /// exerts no force rather than a NaN one.
+    pub(crate) fn collect(
+        &mut self,
+        list: &VerletList,
+        q: &[Vec3],
+        bx: &PeriodicBox,
+        shear: Option<&LeesEdwards>,
+        walls: Option<&FrozenWalls>,
+        params: &Params,
+    ) {
+        match (shear, walls) {
+            (None, None) => {
+                let nothing = &mut vec![(); q.len()];
+                self.collect_then(list, q, bx, params, nothing, |_: Run<()>| {})
+            }
+            // The scan's separation is the image, but the velocity shift needs the crossing
+            // count: both come from the positions.
+            (Some(le), _) => {
+                let fill = self.start_fill(list, q, bx, shear, params, true);
+                let image = |i: u32, j: u32| le.min_image(bx, q[i as usize] - q[j as usize]);
+                let from_positions = |i, j, _| Some(image(i, j).0);
+                fill.into(self, from_positions, Some(from_positions), |_: &[Pair]| {});
+                let shifts = self.pairs.iter().map(|p| image(p.i, p.j).1);
+                self.shifts.extend(shifts);
+            }
+            (None, Some(w)) => {
+                let fill = self.start_fill(list, q, bx, None, params, true);
+                let mobile = |i: u32, j: u32, d: Vec3| {
+                    (!(w.frozen[i as usize] && w.frozen[j as usize])).then_some(d)
+                };
+                let image = |i, j, d| mobile(i, j, bx.min_image(d));
+                fill.into(self, image, Some(mobile), |_: &[Pair]| {});
+                let v = &w.velocity_x;
+                let shifts = self.pairs.iter().map(|p| v[p.i as usize] - v[p.j as usize]);
+                self.shifts.extend(shifts);
+            }
+        }
+    }
+
+    /// [`PairTable::collect`] in a periodic box without walls, calling `after(run)` for every
+    /// run of the new table as soon as it is filled, while its pairs are in cache: on the
+    /// thread that filled it, colour by colour, so that `after` may update the particles of
+    /// the run's pairs in `out` (one entry per particle) as [`PairTable::for_each_pair`] would,
+    /// in the same order. The table's indices are below `Bound::of(q)`.
+    pub(crate) fn collect_then<W: Send>(
+        &mut self,
+        list: &VerletList,
+        q: &[Vec3],
+        bx: &PeriodicBox,
+        params: &Params,
+        out: &mut [W],
+        after: impl Fn(Run<W>) + Sync,
+    ) {
+        let out = Bound::of(q).write(out);
+        let fill = self.start_fill(list, q, bx, None, params, false);
+        let image = |_, _, d| Some(bx.min_image(d));
+        // A fill hands `after` its runs as they are filled: pairs of distinct particles below
+        // `q.len()`, and runs on different threads at the same time only from one colour,
+        // whose runs touch disjoint particles; `out` has an entry for each (`Bound::write`).
+        let run = move |pairs: &[Pair]| after(Run { pairs, out });
+        fill.into(self, image, None::<Separation>, run);
+    }
+
+    /// Reset the table for a fill at positions `q`, which records velocity shifts if
+    /// `shifted`, and what the fill reads.
+    fn start_fill<'a>(
+        &mut self,
+        list: &'a VerletList,
+        q: &'a [Vec3],
+        bx: &'a PeriodicBox,
+        shear: Option<&'a LeesEdwards>,
+        params: &'a Params,
+        shifted: bool,
+    ) -> Fill<'a> {
+        self.shifted = shifted;
+        self.shifts.clear();
+        self.particles = q.len();
+        Fill {
+            list,
+            q,
+            bx,
+            shear,
+            params,
+        }
+    }
+}
+
+/// The separation of pair `(i, j)` to use, given the one a scan found, or `None` when the pair
+/// does not interact.
+type Separation = fn(u32, u32, Vec3) -> Option<Vec3>;
+
+/// What [`PairTable::collect`] fills from.
+struct Fill<'a> {
+    list: &'a VerletList,
+    q: &'a [Vec3],
+    bx: &'a PeriodicBox,
+    shear: Option<&'a LeesEdwards>,
+    params: &'a Params,
+}
+
+impl Fill<'_> {
+    /// Fill `table`: from the candidates with `image(i, j, q_i - q_j)` giving the minimum
+    /// image, or `None` for a pair that does not interact (two frozen particles); without skin
+    /// from the grid's scan, with `scanned(i, j, d)` doing the same for the scan's
+    /// minimum-image separation `d`, or with the scan's hits as they are when `scanned` is
+    /// `None`. `after(run)` is called with every run once it is filled, colour by colour, the
+    /// runs of one colour on the threads that filled them.
+    #[inline(always)]
+    fn into(
+        self,
+        table: &mut PairTable,
+        image: impl Fn(u32, u32, Vec3) -> Option<Vec3> + Sync,
+        scanned: Option<impl Fn(u32, u32, Vec3) -> Option<Vec3> + Sync>,
+        after: impl Fn(&[Pair]) + Sync,
+    ) {
+        let Fill {
+            list,
+            q,
+            bx,
+            shear,
+            params,
+        } = self;
+        let rc = params.rc();
+        let rc2 = rc * rc;
+        let inv_rc = 1.0 / rc;
+        // The pair of `(i, j)` at separation `d`, `r2 = |d|^2`, `r = sqrt(r2)`, `inv = 1 / r`.
+        let geometry = |i: u32, j: u32, d: Vec3, r: f64, inv: f64| {
+            let w = 1.0 - r * inv_rc;
+            Pair {
+                i,
+                j,
+                e: d * inv,
+                w,
+                wr: params.w_r(w),
+            }
+        };
+        let interacts = |r2: f64| r2 < rc2 && r2 > 0.0;
+        let pair = |i: u32, j: u32, d: Vec3| -> Option<Pair> {
+            let r2 = d.norm_squared();
+            interacts(r2).then(|| {
+                let r = r2.sqrt();
+                geometry(i, j, d, r, 1.0 / r)
+            })
+        };
+        if list.skin() == 0.0 {
+            let grid = list.grid();
+            table.groups = match &scanned {
+                None => grid.sweep(
+                    q,
+                    bx,
+                    shear,
+                    rc,
+                    &mut table.pairs,
+                    #[inline(always)]
+                    |h, out| {
+                        out.reserve(h.len());
+                        for k in 0..h.len() {
+                            if interacts(h.r2[k]) {
+                                let (j, d) = h.get(k);
+                                out.push(geometry(h.a(), j, d, h.r[k], h.inv_r[k]));
+                            }
+                        }
+                    },
+                    after,
+                ),
+                Some(scanned) => {
+                    let emit = |h: &Hits, out: &mut Vec<Pair>| {
+                        for k in 0..h.len() {
+                            let (j, d) = h.get(k);
+                            out.extend(scanned(h.a(), j, d).and_then(|g| pair(h.a(), j, g)))
+                        }
+                    };
+                    grid.sweep(q, bx, shear, rc, &mut table.pairs, emit, after)
+                }
+            };
+            return;
+        }
+        let from = list.groups();
+        let runs: Vec<&[(u32, u32)]> = from
+            .runs
+            .windows(2)
+            .map(|run| list.candidates().slice(run[0] as usize..run[1] as usize))
+            .collect();
+        let parallel = on_all_threads(list.candidates().len());
+        let (groups, split) = (&from.colours, from.independent);
+        let kept = chunked::flat_map_ordered(
+            &runs,
+            groups,
+            split,
+            &mut table.pairs,
+            parallel,
+            |run, out| {
+                let start = out.len();
+                for &(i, j) in *run {
+                    let d = q[i as usize] - q[j as usize];
+                    out.extend(image(i, j, d).and_then(|g| pair(i, j, g)));
+                }
+                after(&out[start..]);
+            },
+        );
+        let groups = &mut table.groups;
+        groups.runs.clear();
+        groups.runs.push(0);
+        let mut end = 0;
+        for n in kept {
+            end += n;
+            groups.runs.push(end);
+        }
+        groups.colours.clone_from(&from.colours);
+        groups.independent = from.independent;
+    }
+}
