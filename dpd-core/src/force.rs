@@ -2,7 +2,7 @@
 
 use crate::boundary::PeriodicBox;
 use crate::neighbour::VerletList;
-use crate::pairs::{visit_run, Bound, ByPair, Disjoint, Noise, Pair, PairTable, Virial};
+use crate::pairs::{Bound, ByPair, Noise, Pair, PairTable, Run, Two, Virial};
 use crate::params::Params;
 use crate::params::Repulsion;
 use crate::system::System;
@@ -13,8 +13,11 @@ use dpd_ir::SweepOrder;
 /// `out` is resized to one entry per particle (it is allocated on first use, so a scheme that
 /// never kicks with B holds no conservative-force array).
 pub(crate) fn conservative(pairs: &PairTable, params: &Params, kind: &[u16], out: &mut Vec<Vec3>) {
-    let add = Conservative::new(pairs.bound(), params, kind, zeroed(out, kind.len()));
-    pairs.visit(SweepOrder::Forward, move |pair| add.pair(pair));
+    let add = Conservative::new(pairs.bound(), params, kind);
+    let out = zeroed(out, kind.len());
+    // SAFETY: the pairs of the table whose bound made `add`.
+    let each = move |pair: &Pair, fi: &mut _, fj: &mut _| unsafe { add.pair(pair, fi, fj) };
+    pairs.for_each_pair(SweepOrder::Forward, out, each);
 }
 
 /// `out` as `n` zero vectors.
@@ -29,37 +32,31 @@ pub(crate) fn zeroed(out: &mut Vec<Vec3>, n: usize) -> &mut [Vec3] {
 /// ([`PairTable::collect_then`]), so that both give the same numbers.
 #[derive(Clone, Copy)]
 pub(crate) struct Conservative<'a> {
-    out: Disjoint<'a, Vec3>,
     kind: ByPair<'a, u16>,
     a: Repulsion<'a>,
 }
 
 impl<'a> Conservative<'a> {
-    /// Totals into `out` (zeroed) for the pairs of a table with index bound `bound`.
-    pub(crate) fn new(
-        bound: Bound,
-        params: &'a Params,
-        kind: &'a [u16],
-        out: &'a mut [Vec3],
-    ) -> Self {
+    /// The forces of the pairs of a table with index bound `bound`.
+    pub(crate) fn new(bound: Bound, params: &'a Params, kind: &'a [u16]) -> Self {
         Conservative {
-            out: bound.write(out),
             kind: bound.read(kind),
             a: params.repulsion(),
         }
     }
 
-    /// Add the force of `pair`: `f = a_ij w e` to particle i, `-f` to j. Concurrent calls must
-    /// be for pairs of disjoint particles (as [`PairTable::visit`] hands them on).
+    /// Add the force of `pair`, `f = a_ij w e`, to the total `fi` of particle i and `-f` to
+    /// `fj`.
+    ///
+    /// # Safety
+    /// `pair` is a pair of the table (or fill) whose bound made this.
     #[inline(always)]
-    pub(crate) fn pair(&self, pair: &Pair) {
-        let f = self.a.of_pair(self.kind, pair.i, pair.j).force(pair.w) * pair.e;
-        // SAFETY: no other thread is at a pair of i or j (the caller's contract), and `out`
-        // was made for the table's bound.
-        unsafe {
-            *self.out.get_paired(pair.i) += f;
-            *self.out.get_paired(pair.j) -= f;
-        }
+    pub(crate) unsafe fn pair(&self, pair: &Pair, fi: &mut Vec3, fj: &mut Vec3) {
+        // SAFETY: the caller's contract.
+        let soft = unsafe { self.a.of_pair(self.kind, pair.i, pair.j) };
+        let f = soft.force(pair.w) * pair.e;
+        *fi += f;
+        *fj -= f;
     }
 }
 
@@ -88,10 +85,16 @@ pub(crate) fn full(sys: &mut System, stream: u8) {
 fn full_with<const SHIFTED: bool, V: Virial>(sys: &mut System, stream: u8) -> V {
     let s = Split::of(sys, false, stream);
     let add = s.add;
-    s.pairs
-        .visit_sum_noisy(SweepOrder::Forward, s.noise, move |pair, z, dvx| {
-            add.pair::<SHIFTED, V>(pair, z, dvx)
-        })
+    let out = zeroed(s.full, s.q.len());
+    s.pairs.sweep_noisy(
+        SweepOrder::Forward,
+        s.noise,
+        out,
+        move |pair, two, z, dvx| {
+            // SAFETY: the pairs of the table whose bound made `add`.
+            unsafe { add.pair::<SHIFTED, V>(pair, two, z, dvx) }
+        },
+    )
 }
 
 /// [`full`] while the pair table is filled ([`PairTable::collect_then`]): each run's normals
@@ -102,19 +105,23 @@ pub(crate) fn full_while_filling(sys: &mut System, stream: u8) {
     let s = Split::of(sys, true, stream);
     let noise = s.noise.map(|noise| noise.of(Bound::of(s.q)));
     let add = s.add;
-    let forces = move |pair: &Pair, z, _| add.pair::<false, ()>(pair, z, 0.0);
-    let each = |run: &[Pair]| visit_run(run, None, SweepOrder::Forward, noise, forces);
-    s.pairs.collect_then(s.list, s.q, s.bx, s.params, each);
+    // SAFETY: the pairs of the fill, whose bound (`Bound::of(q)`) made `add`.
+    let forces =
+        move |pair: &Pair, two: Two<_>, z, _| unsafe { add.pair::<false, ()>(pair, two, z, 0.0) };
+    let each = |run: Run<Vec3>| run.sweep(noise, forces);
+    let out = zeroed(s.full, s.q.len());
+    s.pairs.collect_then(s.list, s.q, s.bx, s.params, out, each);
 }
 
 /// A system taken apart for a full-force evaluation: its pair table and what fills it, the
-/// force totals and the noise.
+/// force totals, the forces and the noise.
 struct Split<'a> {
     pairs: &'a mut PairTable,
     list: &'a VerletList,
     q: &'a [Vec3],
     bx: &'a PeriodicBox,
     params: &'a Params,
+    full: &'a mut Vec<Vec3>,
     add: Full<'a>,
     noise: Option<Noise<'a>>,
 }
@@ -140,7 +147,7 @@ impl<'a> Split<'a> {
             ..
         } = *sys;
         let bound = if refill { Bound::of(q) } else { pairs.bound() };
-        let add = Full::new(bound, params, dt, (p, inv_mass, kind), full);
+        let add = Full::new(bound, params, dt, (p, inv_mass, kind));
         let noise = add.noise(seed, step, stream, id);
         Split {
             pairs,
@@ -148,6 +155,7 @@ impl<'a> Split<'a> {
             q,
             bx,
             params,
+            full,
             add,
             noise,
         }
@@ -159,7 +167,6 @@ impl<'a> Split<'a> {
 /// give the same numbers.
 #[derive(Clone, Copy)]
 pub(crate) struct Full<'a> {
-    out: Disjoint<'a, Vec3>,
     p: ByPair<'a, Vec3>,
     inv_mass: ByPair<'a, f64>,
     kind: ByPair<'a, u16>,
@@ -171,18 +178,16 @@ pub(crate) struct Full<'a> {
 }
 
 impl<'a> Full<'a> {
-    /// Totals into `out` (allocated on first use, zeroed) for the pairs of a table with index
-    /// bound `bound`, at momenta `p` (with `inv_mass` and `kind` the particles' inverse masses
-    /// and types) and time step `dt` (which scales the random force).
+    /// The forces of the pairs of a table with index bound `bound`, at momenta `p` (with
+    /// `inv_mass` and `kind` the particles' inverse masses and types) and time step `dt`
+    /// (which scales the random force).
     pub(crate) fn new(
         bound: Bound,
         params: &'a Params,
         dt: f64,
         (p, inv_mass, kind): (&'a [Vec3], &'a [f64], &'a [u16]),
-        out: &'a mut Vec<Vec3>,
     ) -> Self {
         Full {
-            out: bound.write(zeroed(out, p.len())),
             p: bound.read(p),
             inv_mass: bound.read(inv_mass),
             kind: bound.read(kind),
@@ -211,28 +216,37 @@ impl<'a> Full<'a> {
     }
 
     /// Add the force of `pair` with standard normal `z` and velocity shift `dvx` (used only
-    /// when `SHIFTED`), and return its dissipative and random part as `V`. Concurrent calls
-    /// must be for pairs of disjoint particles (as [`PairTable::visit`] hands them on).
+    /// when `SHIFTED`) to the total of particle i and its opposite to that of j, and return its
+    /// dissipative and random part as `V`.
+    ///
+    /// # Safety
+    /// `pair` is a pair of the table (or fill) whose bound made this.
     #[inline(always)]
-    pub(crate) fn pair<const SHIFTED: bool, V: Virial>(&self, pair: &Pair, z: f64, dvx: f64) -> V {
+    pub(crate) unsafe fn pair<const SHIFTED: bool, V: Virial>(
+        &self,
+        pair: &Pair,
+        two: Two<Vec3>,
+        z: f64,
+        dvx: f64,
+    ) -> V {
         let (i, j) = (pair.i, pair.j);
-        let u = pair.normal_velocity::<SHIFTED>(
-            self.p.get(i) * self.inv_mass.get(i),
-            self.p.get(j) * self.inv_mass.get(j),
-            dvx,
-        );
-        let conservative = self.a.of_pair(self.kind, i, j).force(pair.w);
+        // SAFETY (both): the caller's contract.
+        let u = unsafe {
+            pair.normal_velocity::<SHIFTED>(
+                self.p.get(i) * self.inv_mass.get(i),
+                self.p.get(j) * self.inv_mass.get(j),
+                dvx,
+            )
+        };
+        let conservative = unsafe { self.a.of_pair(self.kind, i, j) }.force(pair.w);
         let mut f = conservative - self.gamma * pair.wr * pair.wr * u;
         if self.noise > 0.0 {
             f += self.noise * pair.wr * z;
         }
         let fe = f * pair.e;
-        // SAFETY: no other thread is at a pair of i or j (the caller's contract), and `out`
-        // was made for the table's bound.
-        unsafe {
-            *self.out.get_paired(i) += fe;
-            *self.out.get_paired(j) -= fe;
-        }
+        let (fi, fj) = two.split();
+        *fi += fe;
+        *fj -= fe;
         V::of(pair, self.rc, f - conservative)
     }
 }

@@ -18,6 +18,7 @@ mod avx2;
 pub mod boundary;
 pub mod checkpoint;
 pub mod chunked;
+mod disjoint;
 pub mod error;
 pub mod flow;
 pub mod force;

@@ -212,12 +212,16 @@ impl Repulsion<'_> {
 
     /// The soft repulsion between particles `i` and `j` of a pair table, their types in `kind`. With
     /// one type the types are not read: a pair loop then loads two values fewer per pair.
+    ///
+    /// # Safety
+    /// As for [`ByPair::get`], for `i` and `j`.
     #[inline(always)]
-    pub(crate) fn of_pair(self, kind: ByPair<'_, u16>, i: u32, j: u32) -> Soft {
+    pub(crate) unsafe fn of_pair(self, kind: ByPair<'_, u16>, i: u32, j: u32) -> Soft {
         let a = if self.types == 1 {
             self.a[0]
         } else {
-            self.of(kind.get(i), kind.get(j))
+            // SAFETY: the caller's contract.
+            unsafe { self.of(kind.get(i), kind.get(j)) }
         };
         Soft::new(a, self.rc)
     }

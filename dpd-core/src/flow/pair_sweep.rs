@@ -4,11 +4,11 @@ use super::expm1::expm1_within;
 use crate::lanes::Lanes;
 #[cfg(target_arch = "x86_64")]
 use crate::lanes::{F64x4, F64x4x2, Vector};
-use crate::pairs::{ByPair, Noise, Pair, Virial};
+use crate::pairs::{ByPair, Noise, Pair, Two, Virial};
 use crate::params::Repulsion;
 use crate::potential::Soft;
 use crate::system::System;
-use crate::Tensor;
+use crate::{Tensor, Vec3};
 use dpd_ir::SweepOrder;
 
 /// What a pair update needs besides the pair and its normal: the particles' inverse masses,
@@ -22,15 +22,24 @@ struct Particles<'a> {
 
 impl Particles<'_> {
     /// The inverse reduced mass `mu = 1/m_i + 1/m_j` of the pair.
+    ///
+    /// # Safety
+    /// `pair` is a pair of the table whose bound made this (`sweep_with`): the sweep hands
+    /// the flows' [`Changes`] only runs of that table.
     #[inline(always)]
-    fn mu(self, pair: &Pair) -> f64 {
-        self.inv_mass.get(pair.i) + self.inv_mass.get(pair.j)
+    unsafe fn mu(self, pair: &Pair) -> f64 {
+        // SAFETY: the caller's contract.
+        unsafe { self.inv_mass.get(pair.i) + self.inv_mass.get(pair.j) }
     }
 
     /// The soft repulsion of the pair's types.
+    ///
+    /// # Safety
+    /// As for [`Particles::mu`].
     #[inline(always)]
-    fn soft(self, pair: &Pair) -> Soft {
-        self.repulsion.of_pair(self.kind, pair.i, pair.j)
+    unsafe fn soft(self, pair: &Pair) -> Soft {
+        // SAFETY: the caller's contract.
+        unsafe { self.repulsion.of_pair(self.kind, pair.i, pair.j) }
     }
 }
 
@@ -104,7 +113,6 @@ fn sweep_with<const SHIFTED: bool, V: Virial>(
         stream,
         id,
     });
-    let p = pairs.write(p);
     let inv_mass = pairs.read(inv_mass);
     let particles = Particles {
         inv_mass,
@@ -112,20 +120,18 @@ fn sweep_with<const SHIFTED: bool, V: Virial>(
         kind: pairs.read(kind),
     };
     let rc = params.rc();
-    pairs.visit_sum_prepared(
+    pairs.sweep_prepared(
         order,
         noise,
+        p,
         #[inline(always)]
         move |run: &[Pair], z: &[f64], out: &mut Vec<Change>| changes(particles, run, z, out),
         // Inlined into both loops that visit (pairs of alternating runs, and the rest).
         #[inline(always)]
-        move |pair: &Pair, change: Change, dvx| {
-            let (i, j) = (pair.i, pair.j);
-            // SAFETY: `visit` never hands two pairs sharing a particle to different threads,
-            // `p` was made for this table, and the two references are to distinct particles
-            // (i != j).
-            let (pi, pj) = unsafe { (p.get_paired(i), p.get_paired(j)) };
-            let (mi, mj) = (inv_mass.get(i), inv_mass.get(j));
+        move |pair: &Pair, two: Two<Vec3>, change: Change, dvx| {
+            let (pi, pj) = two.split();
+            // SAFETY: a pair of `pairs`, whose bound made `inv_mass`.
+            let (mi, mj) = unsafe { (inv_mass.get(pair.i), inv_mass.get(pair.j)) };
             let u = pair.normal_velocity::<SHIFTED>(*pi * mi, *pj * mj, dvx);
             let impulse = change.slope * u + change.offset;
             let dp = impulse * pair.e;
@@ -173,18 +179,23 @@ fn ou_change<L: Lanes>(kbt: f64, mu: L, em1: L, r: L) -> (L, L) {
 /// dependent operations are independent, and the CPU overlaps them (with four pairs at a time
 /// in one register this loop took 9.5 instead of 6.8 timestamp-counter cycles per pair, at
 /// N = 24 000 on the development VM).
+///
+/// # Safety
+/// As for [`Particles::mu`], for every pair of `pairs`.
 #[inline(always)]
-fn ou_changes(
+unsafe fn ou_changes(
     ou: (f64, f64, f64),
     with: Particles,
     pairs: &[Pair],
     z: &[f64],
     out: &mut Vec<Change>,
 ) {
-    let each = pair_by_pair(move |with, pair: &Pair, r| ou_pair(ou, with, pair, r));
+    // SAFETY: `ou_changes` is called with runs of the table that made `with` (its contract).
+    let each = pair_by_pair(move |with, pair: &Pair, r| unsafe { ou_pair(ou, with, pair, r) });
     #[cfg(target_arch = "x86_64")]
     let (pairs, z) = if std::arch::is_x86_feature_detected!("avx2") {
-        // SAFETY: the feature was detected.
+        // SAFETY: the feature was detected; pairs of the table that made `with` (the caller's
+        // contract).
         unsafe {
             let (pairs, z) = ou_groups::<8, F64x4x2>(ou, with, pairs, z, out, each);
             ou_groups::<4, F64x4>(ou, with, pairs, z, out, each)
@@ -196,9 +207,18 @@ fn ou_changes(
 }
 
 /// The [`ou_change`] of one pair with normal `r`.
+///
+/// # Safety
+/// As for [`Particles::mu`].
 #[inline(always)]
-fn ou_pair((gamma, kbt, h): (f64, f64, f64), with: Particles, pair: &Pair, r: f64) -> Change {
-    let mu = with.mu(pair);
+unsafe fn ou_pair(
+    (gamma, kbt, h): (f64, f64, f64),
+    with: Particles,
+    pair: &Pair,
+    r: f64,
+) -> Change {
+    // SAFETY: the caller's contract.
+    let mu = unsafe { with.mu(pair) };
     let em1 = expm1(ou_exponent(gamma, h, pair.wr, mu));
     let (slope, offset) = ou_change(kbt, mu, em1, r);
     Change {
@@ -213,7 +233,7 @@ fn ou_pair((gamma, kbt, h): (f64, f64, f64), with: Particles, pair: &Pair, r: f6
 /// fewer than `N` pairs left over, with their normals.
 ///
 /// # Safety
-/// The CPU must support AVX2.
+/// The CPU must support AVX2, and `pairs` are pairs of the table that made `with`.
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
 unsafe fn ou_groups<'a, const N: usize, V: Vector<N>>(
@@ -240,7 +260,7 @@ unsafe fn ou_groups<'a, const N: usize, V: Vector<N>>(
 /// all their exponents lie in `[-40, 0]`.
 ///
 /// # Safety
-/// The CPU must support AVX2.
+/// The CPU must support AVX2, and `pairs` are pairs of the table that made `with`.
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
 unsafe fn ou_lanes<const N: usize, V: Vector<N>>(
@@ -250,6 +270,7 @@ unsafe fn ou_lanes<const N: usize, V: Vector<N>>(
     z: &[f64],
 ) -> Option<[Change; N]> {
     // SAFETY: the caller's contract.
+    // SAFETY: the caller's contract (AVX2, and pairs of the table that made `with`).
     let (wr, mu, r) = unsafe {
         (
             V::from_fn(|l| pairs[l].wr),
@@ -286,7 +307,8 @@ pub fn ou(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
         order,
         #[inline(always)]
         move |with: Particles, pairs: &[Pair], z: &[f64], out: &mut Vec<Change>| {
-            ou_changes((gamma, kbt, h), with, pairs, z, out)
+            // SAFETY: `sweep` hands the changes only runs of the table that made `with`.
+            unsafe { ou_changes((gamma, kbt, h), with, pairs, z, out) }
         },
     );
 }
@@ -301,8 +323,9 @@ pub fn bbk(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
         return;
     }
     let root_h = h.max(0.0).sqrt();
+    // SAFETY: `sweep` hands the changes only runs of the table that made `with`.
     let change = move |with: Particles, pair: &Pair, r: f64| {
-        let mu = with.mu(pair);
+        let mu = unsafe { with.mu(pair) };
         let half_tau_h = 0.5 * gamma * pair.wr * pair.wr * mu * h;
         let kick = 0.5 * sigma * pair.wr * mu * root_h * r;
         let scale = 1.0 / (1.0 + half_tau_h);
@@ -323,12 +346,13 @@ pub fn bbk(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
 pub fn trotter(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
     let (gamma, kbt) = (sys.params.gamma(), sys.params.kbt());
     sys.counters.force_evaluations += 1;
+    // SAFETY (both): `sweep` hands the changes only runs of the table that made `with`.
     let change = move |with: Particles, pair: &Pair, r: f64| {
-        let mu = with.mu(pair);
+        let mu = unsafe { with.mu(pair) };
         let x = gamma * pair.wr * pair.wr * mu * h;
         let em1 = expm1(-x);
         let phi1 = if x == 0.0 { 1.0 } else { -em1 / x };
-        let f = with.soft(pair).force(pair.w);
+        let f = unsafe { with.soft(pair) }.force(pair.w);
         let offset = f * mu * h * phi1 + ou_std(kbt, mu, em1) * r;
         let (slope, offset) = per_mass(em1, offset, mu);
         Change {
@@ -355,7 +379,7 @@ fn pair_by_pair(change: impl Fn(Particles, &Pair, f64) -> Change + Sync + Copy) 
 mod tests {
     use super::*;
     use crate::pairs::Bound;
-    use crate::{Params, Vec3};
+    use crate::Params;
 
     #[test]
     fn pairs_in_lanes_are_pairs_one_by_one() {
@@ -386,10 +410,11 @@ mod tests {
                 .collect();
             let z: Vec<f64> = (0..n).map(|l| (t * 0.7 + l as f64).sin() * 3.0).collect();
             let mut changes = Vec::new();
-            ou_changes((gamma * big, kbt, h), with, &pairs, &z, &mut changes);
+            // SAFETY (both): indices below 64, the bound that made `with`.
+            unsafe { ou_changes((gamma * big, kbt, h), with, &pairs, &z, &mut changes) };
             assert_eq!(changes.len(), n);
             for ((pair, &r), c) in pairs.iter().zip(&z).zip(&changes) {
-                let mu = with.mu(pair);
+                let mu = unsafe { with.mu(pair) };
                 let em1 = expm1(ou_exponent(gamma * big, h, pair.wr, mu));
                 let (s, o) = ou_change(kbt, mu, em1, r);
                 assert_eq!(

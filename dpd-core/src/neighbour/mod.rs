@@ -64,7 +64,7 @@ mod stencil;
 use crate::avx2::with_avx2;
 use crate::boundary::{LeesEdwards, PeriodicBox};
 use crate::chunked::{self, Parts};
-use crate::pairs::Disjoint;
+use crate::disjoint::Disjoint;
 use crate::system::on_all_threads;
 use crate::Vec3;
 use rayon::prelude::*;
