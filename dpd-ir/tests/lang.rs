@@ -495,3 +495,60 @@ fn check_result(src: &str) {
         }
     }
 }
+
+mod free_parameters {
+    use super::*;
+    use dpd_ir::lang::{compile_family, MAX_PARAMETERS};
+
+    const MCLACHLAN: &str = "param l in 0..1/2; B(l) A(1/2) B(1 - 2*l) A(1/2) B(l) O";
+
+    fn family_err(src: &str, needle: &str) -> String {
+        let e = compile_family(src).expect_err(src);
+        assert_eq!(e.len(), 1, "{src}: {e:?}");
+        assert!(e[0].message.contains(needle), "{src}: {}", e[0].message);
+        src[e[0].span.clone()].to_string()
+    }
+
+    #[test]
+    fn a_family_compiles_at_any_point_and_refuses_to_run() {
+        let f = compile_family(MCLACHLAN).unwrap();
+        assert_eq!(f.names(), ["l"]);
+        assert_eq!((f.parameters[0].lo, f.parameters[0].hi), (0.0, 0.5));
+        let p = f.at(&[0.25]).unwrap();
+        assert_eq!(p.to_string(), "B(0.25) A(1/2) B(0.5) A(1/2) B(0.25) O(1)");
+        assert_eq!(p.force_evaluations_per_step(), 2);
+        assert_eq!(one_err(MCLACHLAN, "'l' is a free parameter"), "l");
+        assert!(f.at(&[]).is_err());
+        let yoshida = compile_family("param x in -2..2; S((1 - x)/2) S(x) S((1 - x)/2) O").unwrap();
+        let x0 = -(2f64.cbrt()) / (2.0 - 2f64.cbrt());
+        assert_eq!(yoshida.at(&[x0]).unwrap().analysis().deterministic_order, 4);
+        assert_eq!(
+            yoshida.at(&[0.3]).unwrap().analysis().deterministic_order,
+            2
+        );
+    }
+
+    #[test]
+    fn bad_declarations_are_errors_on_the_parameter() {
+        assert_eq!(
+            family_err("param l in 1..1; A(l) B O", "empty range"),
+            "param l in 1..1;"
+        );
+        assert_eq!(
+            family_err("param l in 1..0; A(l) B O", "inverted range"),
+            "param l in 1..0;"
+        );
+        assert_eq!(family_err("param l in 0..1; ABO", "not used"), "l");
+        assert_eq!(
+            family_err(
+                "param l in 0..1; let l = 2; A(l) B O",
+                "both a free parameter and a constant"
+            ),
+            "l"
+        );
+        let four = "param a in 0..1; param b in 0..1; param c in 0..1; param d in 0..1; A(a) B(b) A(c) B(d) O";
+        assert_eq!(MAX_PARAMETERS, 3);
+        assert_eq!(family_err(four, "at most 3"), "param d in 0..1;");
+        assert_eq!(family_err("param l in 0 1; A(l) B O", "'..'"), "1");
+    }
+}

@@ -4,9 +4,10 @@
 
 use crate::registry::{lookup, ResolveError, Row};
 use dpd_ir::analysis::CoefficientSums;
-use dpd_ir::lang::{compile_with, Options};
+use dpd_ir::lang::{compile_family, compile_with, Options};
 use dpd_ir::{Analysis, Program};
 use serde::Serialize;
+use std::collections::BTreeMap;
 use thiserror::Error;
 
 /// The analysis of one scheme. For a hand-written registry scheme (no program) the orders and
@@ -26,9 +27,20 @@ pub struct Check {
     pub invariant_measure_order: Option<u32>,
     pub invariant_measure_order_capped: bool,
     pub first_nonvanishing: Option<String>,
+    /// Euclidean norm of the leading Hamiltonian error in the Lyndon basis (see
+    /// [`Analysis::deterministic_error_norm`]); null when not analysed or inconsistent.
+    pub deterministic_error_norm: Option<f64>,
+    /// The leading Hamiltonian error term in the Lyndon basis.
+    pub deterministic_leading_term: Option<String>,
+    /// Euclidean norm of `first_nonvanishing` over its words (see
+    /// [`Analysis::invariant_measure_error_norm`]).
+    pub invariant_measure_error_norm: Option<f64>,
     pub symmetric: bool,
     pub force_evaluations_per_step: usize,
     pub pair_distance_evaluations_per_step: usize,
+    /// For a scheme with free parameters (`param`): the point analysed, name -> value (a
+    /// generic point of the box unless given). Null for a scheme without parameters.
+    pub parameters: Option<BTreeMap<String, f64>>,
     /// The full analysis, for the text report.
     #[serde(skip)]
     pub analysis: Option<Analysis>,
@@ -58,9 +70,13 @@ impl Check {
             invariant_measure_order: a.invariant_measure_order,
             invariant_measure_order_capped: a.invariant_measure_order_capped,
             first_nonvanishing: a.first_nonvanishing.clone(),
+            deterministic_error_norm: a.deterministic_error_norm,
+            deterministic_leading_term: a.deterministic_leading_term.clone(),
+            invariant_measure_error_norm: a.invariant_measure_error_norm,
             symmetric: program.is_symmetric(),
             force_evaluations_per_step: cost.force,
             pair_distance_evaluations_per_step: cost.pair_distance,
+            parameters: None,
             analysis: Some(a),
         }
     }
@@ -77,16 +93,28 @@ impl Check {
             invariant_measure_order: row.invariant_measure_order,
             invariant_measure_order_capped: false,
             first_nonvanishing: None,
+            deterministic_error_norm: None,
+            deterministic_leading_term: None,
+            invariant_measure_error_norm: None,
             symmetric: row.symmetric,
             force_evaluations_per_step: row.force_evaluations_per_step,
             pair_distance_evaluations_per_step: row.pair_distance_evaluations_per_step,
+            parameters: None,
             analysis: None,
         }
     }
 }
 
-/// The check of a registry entry, else of the text compiled with inconsistency allowed.
+/// The check of a registry entry, else of the text compiled with inconsistency allowed; a
+/// text with free parameters is analysed at a generic point of its box (the orders found
+/// there hold for almost every point).
 pub fn check(name_or_source: &str) -> Result<Check, CheckError> {
+    check_at(name_or_source, None)
+}
+
+/// As [`check`], a text with free parameters analysed at `values` (one per parameter, in
+/// declaration order) when given.
+pub fn check_at(name_or_source: &str, values: Option<&[f64]>) -> Result<Check, CheckError> {
     let unknown = match lookup(name_or_source) {
         Ok(entry) => {
             return Ok(match entry.scheme().program() {
@@ -100,8 +128,21 @@ pub fn check(name_or_source: &str) -> Result<Check, CheckError> {
         allow_inconsistent: true,
     };
     let source = name_or_source.trim();
-    match compile_with(source, &options) {
-        Ok(p) => Ok(Check::of_program(source.to_string(), &p)),
+    let compiled = match compile_family(source) {
+        Ok(f) if !f.parameters.is_empty() || values.is_some() => {
+            let point = values.map_or_else(|| f.generic_point(), <[f64]>::to_vec);
+            f.at_with(&point, &options).map(|p| {
+                let mut c = Check::of_program(source.to_string(), &p);
+                let names = f.parameters.iter().map(|q| q.name.clone());
+                c.parameters = Some(names.zip(point).collect());
+                c
+            })
+        }
+        Ok(_) => compile_with(source, &options).map(|p| Check::of_program(source.to_string(), &p)),
+        Err(e) => Err(e),
+    };
+    match compiled {
+        Ok(c) => Ok(c),
         Err(diagnostics) => Err(CheckError {
             scheme: name_or_source.to_string(),
             reason: ResolveError {
@@ -126,6 +167,17 @@ mod tests {
         assert_eq!(by_name.program, by_text.program);
         assert_eq!(by_name.deterministic_order, 2);
         assert_eq!(by_text.invariant_measure_order, Some(2));
+    }
+
+    #[test]
+    fn a_family_is_analysed_at_a_point() {
+        let src = "param x in -2..2; S((1 - x)/2) S(x) S((1 - x)/2) O";
+        let x0 = -(2f64.cbrt()) / (2.0 - 2f64.cbrt());
+        assert_eq!(check(src).unwrap().deterministic_order, 2);
+        let at = check_at(src, Some(&[x0])).unwrap();
+        assert_eq!(at.deterministic_order, 4);
+        assert_eq!(at.parameters.unwrap()["x"], x0);
+        assert!(check_at(src, Some(&[1.0, 2.0])).is_err());
     }
 
     #[test]

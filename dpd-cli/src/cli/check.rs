@@ -2,20 +2,24 @@
 //! JSON of [`dpd::schemes::check::Check`].
 
 use super::{bad_input, print_json};
-use dpd::schemes::check::check;
+use dpd::schemes::check::check_at;
 use std::process::ExitCode;
 
 #[derive(Debug, clap::Args)]
 pub struct Args {
     /// Registry name (`dpd schemes` lists them) or scheme string, e.g. "BAOOAB"
     scheme: String,
+    /// Values of the free parameters (`param`) to analyse at, in declaration order, e.g.
+    /// --at 0.25 or --at 0.25,0.1 (default: a generic point of the box)
+    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+    at: Option<Vec<f64>>,
     /// Print one JSON object on stdout
     #[arg(long)]
     json: bool,
 }
 
 pub fn main(args: Args) -> ExitCode {
-    let c = match check(&args.scheme) {
+    let c = match check_at(&args.scheme, args.at.as_deref()) {
         Ok(c) => c,
         Err(e) => return bad_input(e),
     };
@@ -24,6 +28,10 @@ pub fn main(args: Args) -> ExitCode {
     }
     let yes = |b: bool| if b { "yes" } else { "no" };
     println!("{} = {}", c.scheme, c.program);
+    if let Some(point) = &c.parameters {
+        let at: Vec<String> = point.iter().map(|(n, v)| format!("{n} = {v}")).collect();
+        println!("analysed at {}", at.join(", "));
+    }
     match &c.analysis {
         Some(a) => print!("{a}"),
         None => println!(

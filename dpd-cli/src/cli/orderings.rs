@@ -22,9 +22,21 @@ pub struct Args {
     /// Letters to combine, e.g. ABO or ABOb
     #[arg(long, default_value = "ABO")]
     alphabet: String,
+    /// Order of the list within equal invariant-measure bounds: `cost` (force, then
+    /// pair-distance evaluations) or `error` (higher deterministic order, then the smaller
+    /// invariant-measure error norm, then the smaller deterministic error norm, then cost)
+    #[arg(long, value_enum, default_value_t = Rank::Cost)]
+    rank: Rank,
     /// Print a JSON array on stdout
     #[arg(long)]
     json: bool,
+}
+
+/// How `dpd orderings` sorts schemes of equal invariant-measure bound.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Rank {
+    Cost,
+    Error,
 }
 
 /// One distinct ordering.
@@ -41,6 +53,10 @@ pub struct Ordering {
     pub force_evaluations_per_step: usize,
     pub pair_distance_evaluations_per_step: usize,
     pub symmetric: bool,
+    /// Norm of the leading Hamiltonian error (Lyndon basis), see `dpd check`.
+    pub deterministic_error_norm: Option<f64>,
+    /// Norm of the first non-vanishing invariant-measure term, see `dpd check`.
+    pub invariant_measure_error_norm: Option<f64>,
 }
 
 pub fn main(args: Args) -> ExitCode {
@@ -59,7 +75,7 @@ pub fn main(args: Args) -> ExitCode {
             letters.len()
         ));
     }
-    let list = orderings(&letters, args.max_len);
+    let list = orderings(&letters, args.max_len, args.rank);
     if args.json {
         return print_json(&list);
     }
@@ -149,9 +165,9 @@ fn strings(letters: &[&'static Letter], max_len: u32) -> Vec<Vec<&'static Letter
 }
 
 /// The distinct consistent orderings (the first string of each merged program), sorted by
-/// invariant-measure bound (descending), then force and pair-distance evaluations, length and
-/// spelling.
-pub fn orderings(letters: &[&'static Letter], max_len: u32) -> Vec<Ordering> {
+/// invariant-measure bound (descending), then by `rank`'s error keys if any, then force and
+/// pair-distance evaluations, length and spelling.
+pub fn orderings(letters: &[&'static Letter], max_len: u32, rank: Rank) -> Vec<Ordering> {
     let stochastic = letters.iter().any(|l| l.flow.is_stochastic());
     let candidates: Vec<String> = strings(letters, max_len)
         .into_iter()
@@ -176,6 +192,8 @@ pub fn orderings(letters: &[&'static Letter], max_len: u32) -> Vec<Ordering> {
                     force_evaluations_per_step: cost.force,
                     pair_distance_evaluations_per_step: cost.pair_distance,
                     symmetric: program.is_symmetric(),
+                    deterministic_error_norm: analysis.deterministic_error_norm,
+                    invariant_measure_error_norm: analysis.invariant_measure_error_norm,
                 },
             ))
         })
@@ -187,9 +205,25 @@ pub fn orderings(letters: &[&'static Letter], max_len: u32) -> Vec<Ordering> {
         .filter(|(key, _)| seen.insert(key.clone()))
         .map(|(_, o)| o)
         .collect();
+    // A missing norm (nothing found up to the highest order checked) ranks first.
+    let norm = |x: Option<f64>| x.unwrap_or(0.0);
     list.sort_by(|a, b| {
+        let by_error = match rank {
+            Rank::Cost => std::cmp::Ordering::Equal,
+            Rank::Error => b
+                .deterministic_order
+                .cmp(&a.deterministic_order)
+                .then(
+                    norm(a.invariant_measure_error_norm)
+                        .total_cmp(&norm(b.invariant_measure_error_norm)),
+                )
+                .then(
+                    norm(a.deterministic_error_norm).total_cmp(&norm(b.deterministic_error_norm)),
+                ),
+        };
         b.invariant_measure_order
             .cmp(&a.invariant_measure_order)
+            .then(by_error)
             .then(
                 a.force_evaluations_per_step
                     .cmp(&b.force_evaluations_per_step),
@@ -223,7 +257,7 @@ mod tests {
 
     #[test]
     fn length_three_gives_the_six_permutations() {
-        let list = orderings(&abo(), 3);
+        let list = orderings(&abo(), 3, Rank::Cost);
         let mut names: Vec<_> = list.iter().map(|o| o.scheme.as_str()).collect();
         names.sort();
         assert_eq!(names, ["ABO", "AOB", "BAO", "BOA", "OAB", "OBA"]);
@@ -233,7 +267,7 @@ mod tests {
 
     #[test]
     fn aboba_leads_the_length_five_list_and_duplicates_are_dropped() {
-        let list = orderings(&abo(), 5);
+        let list = orderings(&abo(), 5, Rank::Cost);
         let best = &list[0];
         assert_eq!(best.invariant_measure_order, Some(2));
         assert_eq!(best.force_evaluations_per_step, 1);
@@ -243,5 +277,20 @@ mod tests {
         assert_eq!(programs.len(), list.len());
         // "AABO" merges to the same program as "ABO".
         assert!(!list.iter().any(|o| o.scheme == "AABO"));
+    }
+
+    #[test]
+    fn rank_error_sorts_equal_orders_by_the_invariant_measure_norm() {
+        let list = orderings(&abo(), 5, Rank::Error);
+        let second: Vec<&Ordering> = list
+            .iter()
+            .filter(|o| o.invariant_measure_order == Some(2) && o.deterministic_order == 2)
+            .collect();
+        assert!(second.len() >= 2);
+        let norms: Vec<f64> = second
+            .iter()
+            .map(|o| o.invariant_measure_error_norm.unwrap())
+            .collect();
+        assert!(norms.windows(2).all(|w| w[0] <= w[1]), "{norms:?}");
     }
 }

@@ -8,6 +8,7 @@
 //! words, so the order does not depend on which end is written first.
 
 use super::algebra::{Algebra, Letter, Series};
+use super::lyndon;
 use super::scalar::Scalar;
 use crate::program::{Flow, Stage};
 
@@ -80,6 +81,34 @@ pub(crate) fn deterministic_order<S: Scalar>(factors: &[(Letter, S)], max_degree
         order: max_degree,
         capped: true,
     }
+}
+
+/// The leading error term of the Hamiltonian part: `log(step) - (A + B)` at degree
+/// `order + 1`, as coordinates in the Lyndon basis (module `lyndon`), with its Euclidean norm.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct LeadingError {
+    /// `(Lyndon word, coefficient)`, every Lyndon word of the degree in lexicographic order.
+    pub terms: Vec<(String, f64)>,
+    /// `sqrt(sum of squared coefficients)`.
+    pub norm: f64,
+}
+
+/// The leading error of a step of deterministic order `order`. Below degree `order + 1` the
+/// step agrees with `exp(A + B)`, so at that degree `step - exp(A + B)` equals
+/// `log(step) - (A + B)`, a Lie element.
+pub(crate) fn leading_error<S: Scalar>(factors: &[(Letter, S)], order: u32) -> LeadingError {
+    let degree = order + 1;
+    let alg = hamiltonian_algebra(degree);
+    let p = product(&alg, factors);
+    let factorial: i64 = (1..=i64::from(degree)).product();
+    let target = S::ratio(1, factorial);
+    let words = alg
+        .terms_of_degree(&p, degree)
+        .map(|(w, c)| (alg.spell(w), c.minus(&target).to_f64()))
+        .collect();
+    let terms = lyndon::coordinates(&['A', 'B'], degree as usize, &words);
+    let norm = terms.iter().map(|(_, c)| c * c).sum::<f64>().sqrt();
+    LeadingError { terms, norm }
 }
 
 #[cfg(test)]
@@ -167,5 +196,35 @@ mod tests {
         );
         let exact_flow: [(Letter, f64); 0] = [];
         assert_eq!(deterministic_order(&exact_flow, 8).order, 0);
+    }
+
+    #[test]
+    fn strang_leading_coefficients_in_the_lyndon_basis() {
+        let half = Rational::ratio(1, 2);
+        let one = Rational::ratio(1, 1);
+        // A(1/2) B A(1/2): log = A + B - 1/24 [A,[A,B]] + 1/12 [B,[B,A]] + O(dt^5)
+        let aba = [(A, half.clone()), (B, one.clone()), (A, half.clone())];
+        let e = leading_error(&aba, 2);
+        assert_eq!(
+            e.terms,
+            [
+                ("AAB".to_string(), -1.0 / 24.0),
+                ("ABB".to_string(), 1.0 / 12.0)
+            ]
+        );
+        assert!((e.norm - 5f64.sqrt() / 24.0).abs() < 1e-15);
+        // B(1/2) A B(1/2): the roles swap
+        let bab = [(B, half.clone()), (A, one), (B, half)];
+        let e = leading_error(&bab, 2);
+        assert_eq!(
+            e.terms,
+            [
+                ("AAB".to_string(), 1.0 / 12.0),
+                ("ABB".to_string(), -1.0 / 24.0)
+            ]
+        );
+        // Lie-Trotter A B: log = A + B + 1/2 [A,B]
+        let lie = [(A, 1.0), (B, 1.0)];
+        assert_eq!(leading_error(&lie, 1).terms, [("AB".to_string(), 0.5)]);
     }
 }

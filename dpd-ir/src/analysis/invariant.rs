@@ -42,6 +42,9 @@ pub(crate) struct InvariantBound {
     pub capped: bool,
     /// The reduced `L_order rho`, when it does not vanish.
     pub leading_term: Option<String>,
+    /// Euclidean norm of the coefficients of the reduced `L_order rho` over the word basis of
+    /// the quotient (words ending in A, `B_k` with `k < K`, or `E_k`), when it does not vanish.
+    pub leading_norm: Option<f64>,
 }
 
 /// What a letter of the invariant-measure alphabet stands for.
@@ -203,10 +206,15 @@ pub(crate) fn invariant_measure_bound<S: Scalar>(
             .filter(|(_, c)| !c.negligible(scale))
             .collect();
         if !survivors.is_empty() {
+            let norm = survivors
+                .iter()
+                .map(|(_, c)| c.to_f64().powi(2))
+                .sum::<f64>();
             return Some(InvariantBound {
                 order: n,
                 capped: false,
                 leading_term: Some(spell_sum(&alg, &survivors)),
+                leading_norm: Some(norm.sqrt()),
             });
         }
     }
@@ -214,6 +222,7 @@ pub(crate) fn invariant_measure_bound<S: Scalar>(
         order: max_order,
         capped: true,
         leading_term: None,
+        leading_norm: None,
     })
 }
 

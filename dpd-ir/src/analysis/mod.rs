@@ -16,6 +16,7 @@ mod algebra;
 mod consistency;
 mod hamiltonian;
 mod invariant;
+mod lyndon;
 mod prk;
 mod report;
 mod scalar;
@@ -94,6 +95,8 @@ fn analyse_in<S: Scalar>(stages: &[Stage], coeffs: &[S], options: &Options) -> A
         options.pairs,
         options.max_invariant_order,
     );
+    let leading =
+        (consistent && !det.capped).then(|| hamiltonian::leading_error(&factors, det.order));
     Analysis {
         consistent,
         coefficient_sums,
@@ -102,6 +105,9 @@ fn analyse_in<S: Scalar>(stages: &[Stage], coeffs: &[S], options: &Options) -> A
         deterministic_order_capped: consistent && det.capped,
         invariant_measure_order: inv.as_ref().map(|b| b.order),
         invariant_measure_order_capped: inv.as_ref().is_some_and(|b| b.capped),
+        invariant_measure_error_norm: inv.as_ref().and_then(|b| b.leading_norm),
         first_nonvanishing: inv.and_then(|b| b.leading_term),
+        deterministic_error_norm: leading.as_ref().map(|e| e.norm),
+        deterministic_leading_term: leading.map(|e| lyndon::spell_terms(&e.terms)),
     }
 }

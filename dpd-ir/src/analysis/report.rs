@@ -27,6 +27,18 @@ pub struct Analysis {
     /// The first non-vanishing reduced term `L_p rho`, words in adjoint order (the sub-flow
     /// applied last stands leftmost; the reduction keeps words ending in A, `B_k` or `E_k`).
     pub first_nonvanishing: Option<String>,
+    /// Size of the leading error of the Hamiltonian part, the coefficient of `dt^(p+1)` in
+    /// `log(step) - dt (A + B)` (p the deterministic order): the Euclidean norm of its
+    /// coordinates in the Lyndon basis of the free Lie algebra on A < B, standard bracketing
+    /// (`[A,[A,B]]`, `[B,[B,A]]` at degree 3), no relation of the problem assumed. `None` when
+    /// inconsistent or when the order reached the highest degree checked.
+    pub deterministic_error_norm: Option<f64>,
+    /// The leading Hamiltonian error term itself, e.g. `-1/24 [A,[A,B]] + 1/12 [[A,B],B]`.
+    pub deterministic_leading_term: Option<String>,
+    /// Size of the first non-vanishing term [`Analysis::first_nonvanishing`]: the Euclidean
+    /// norm of its coefficients over the words shown (the word basis of the quotient by the
+    /// left ideal, K = 2 pair generators per sweep). `None` where that term is `None`.
+    pub invariant_measure_error_norm: Option<f64>,
 }
 
 impl fmt::Display for Analysis {
@@ -60,8 +72,22 @@ impl fmt::Display for Analysis {
                 "invariant-measure order: not applicable (F stages are not exact flows; measure it)"
             )?,
         }
+        if let (Some(term), Some(norm)) = (
+            &self.deterministic_leading_term,
+            self.deterministic_error_norm,
+        ) {
+            writeln!(
+                f,
+                "leading deterministic error: dt^{} ({term}), norm {norm:.6} (Lyndon basis)",
+                self.deterministic_order + 1
+            )?;
+        }
         match (&self.first_nonvanishing, self.invariant_measure_order) {
-            (Some(term), Some(p)) => writeln!(f, "first non-vanishing term: L_{p} rho = {term}"),
+            (Some(term), Some(p)) => writeln!(
+                f,
+                "first non-vanishing term: L_{p} rho = {term}, norm {:.6}",
+                self.invariant_measure_error_norm.unwrap_or(f64::NAN)
+            ),
             _ => Ok(()),
         }
     }

@@ -85,9 +85,21 @@ pub struct Def {
     pub body: Vec<Step>,
 }
 
+/// `param name in lo..hi;`
+#[derive(Clone, Debug, PartialEq)]
+pub struct Param {
+    pub name: String,
+    pub name_span: Span,
+    pub lo: Expr,
+    pub hi: Expr,
+    /// The whole declaration.
+    pub span: Span,
+}
+
 /// A whole scheme source: its definitions and the step sequence.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Script {
+    pub params: Vec<Param>,
     pub lets: Vec<Let>,
     pub defs: Vec<Def>,
     pub steps: Vec<Step>,

@@ -15,7 +15,7 @@ pub const MAX_CALL_DEPTH: usize = 32;
 pub const MAX_APPLICATIONS: usize = 10_000;
 
 /// Words that cannot name a constant.
-const RESERVED: [&str; 3] = ["let", "def", "prk"];
+pub(crate) const RESERVED: [&str; 4] = ["let", "def", "prk", "param"];
 
 /// One sub-flow application of the flattened step.
 #[derive(Clone, Debug, PartialEq)]
@@ -31,11 +31,13 @@ pub struct Application {
 }
 
 /// Expands `script`, whose names may refer to the definitions of `prelude` (which `script`
-/// may shadow). Returns the applications in order, with implicit coefficients filled in.
+/// may shadow) and to the free parameters bound to the values `bindings`. Returns the
+/// applications in order, with implicit coefficients filled in.
 pub fn expand(
     src: &str,
     script: &Script,
     prelude: &Script,
+    bindings: &[(String, Value)],
 ) -> Result<Vec<Application>, Vec<Diagnostic>> {
     let mut x = Expander {
         src,
@@ -47,6 +49,7 @@ pub fn expand(
         next_noise: 0,
     };
     x.define(prelude, true);
+    x.consts.extend(bindings.iter().cloned());
     x.define(script, false);
     for step in &script.steps {
         x.step(step, &[], step_span(step), false);

@@ -18,6 +18,8 @@ pub enum Tok {
     Number(String),
     /// One of `( ) [ ] , ; = + - * / ^ < >`.
     Punct(char),
+    /// `..`, the range of a `param` declaration.
+    DotDot,
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -59,6 +61,8 @@ pub fn lex(src: &str) -> (Vec<Token>, Vec<Diagnostic>) {
                 ));
             }
             (Tok::Number(src[start..end].to_string()), end)
+        } else if src[start..].starts_with("..") {
+            (Tok::DotDot, start + 2)
         } else if PUNCT.contains(c) {
             (Tok::Punct(c), start + 1)
         } else {
@@ -89,7 +93,7 @@ fn number_end(bytes: &[u8], start: usize) -> usize {
         i
     };
     let mut end = digits(start);
-    if bytes.get(end) == Some(&b'.') {
+    if bytes.get(end) == Some(&b'.') && bytes.get(end + 1) != Some(&b'.') {
         end = digits(end + 1);
     }
     if matches!(bytes.get(end), Some(b'e' | b'E')) {
@@ -132,6 +136,13 @@ mod tests {
             toks("2e"),
             vec![Tok::Number("2".into()), Tok::Lower("e".into())]
         );
+    }
+
+    #[test]
+    fn ranges_split_numbers() {
+        let n = |s: &str| Tok::Number(s.to_string());
+        assert_eq!(toks("0..1"), vec![n("0"), Tok::DotDot, n("1")]);
+        assert_eq!(toks("0.5..2."), vec![n("0.5"), Tok::DotDot, n("2.")]);
     }
 
     #[test]

@@ -77,6 +77,14 @@
 //! so `S(x1) S(x0) S(x1)` is the fourth-order triple jump and `S(x1) S(x0) S(x1) Ob` is
 //! M-Shardlow-2.
 //!
+//! # Free parameters
+//!
+//! `param l in 0..1/2;` declares a free parameter with its range, usable in every coefficient
+//! (module [`family`]): `param l in 0..1/2; B(l) A(1/2) B(1 - 2*l) A(1/2) B(l) O`. Such a
+//! family is compiled by [`compile_family`], analysed at a point and designed; [`compile`]
+//! refuses it, naming the parameter. At most [`MAX_PARAMETERS`] parameters; the range must
+//! not be empty; every parameter must be used and must not also be a `let` constant.
+//!
 //! # Partitioned Runge-Kutta tables
 //!
 //! `prk(b = [b1, ..., bn], bh = [bh1, ..., bhn], kick = F)` expands to
@@ -90,6 +98,7 @@
 //! ```text
 //! scheme  = { item } ;
 //! item    = "let" name "=" expr ";"
+//!         | "param" name "in" expr ".." expr ";"
 //!         | "def" Name [ "(" name { "," name } ")" ] "=" step { step } ";"
 //!         | step ;
 //! step    = Name [ "<" | ">" ] [ "(" expr { "," expr } ")" ]
@@ -138,6 +147,7 @@ mod ast;
 mod diagnostic;
 mod expand;
 mod expr;
+pub mod family;
 pub mod letters;
 mod lexer;
 mod lower;
@@ -146,6 +156,7 @@ mod validate;
 mod value;
 
 pub use diagnostic::Diagnostic;
+pub use family::{compile_family, Family, Parameter, MAX_PARAMETERS};
 pub use letters::{Letter, LETTERS};
 
 use crate::program::Program;
@@ -169,11 +180,27 @@ pub fn compile(src: &str) -> Result<Program, Vec<Diagnostic>> {
     compile_with(src, &Options::default())
 }
 
-/// Compiles a scheme: parse, expand, check, lower.
+/// Compiles a scheme: parse, expand, check, lower. A scheme with free parameters (`param`)
+/// is refused, naming each; see [`compile_family`].
 pub fn compile_with(src: &str, options: &Options) -> Result<Program, Vec<Diagnostic>> {
     let prelude = parse_source(PRELUDE)?;
     let script = parse_source(src)?;
-    let apps = expand::expand(src, &script, &prelude)?;
+    let free = family::refuse_free_parameters(&script);
+    if !free.is_empty() {
+        return Err(free);
+    }
+    build(src, &script, &prelude, &[], options)
+}
+
+/// Expands, checks and lowers a parsed scheme with its free parameters bound.
+fn build(
+    src: &str,
+    script: &ast::Script,
+    prelude: &ast::Script,
+    bindings: &[(String, value::Value)],
+    options: &Options,
+) -> Result<Program, Vec<Diagnostic>> {
+    let apps = expand::expand(src, script, prelude, bindings)?;
     let errors = validate::validate(&apps, src.len(), options);
     if !errors.is_empty() {
         return Err(errors);

@@ -1,6 +1,6 @@
 //! Recursive-descent parser from tokens to a [`Script`], with bounded nesting.
 
-use super::ast::{Apply, BinOp, Def, Expr, Let, Prk, Script, Span, Step};
+use super::ast::{Apply, BinOp, Def, Expr, Let, Param, Prk, Script, Span, Step};
 use super::diagnostic::{position, Diagnostic};
 use super::lexer::{Tok, Token};
 use crate::program::{Flow, SweepOrder};
@@ -141,6 +141,7 @@ impl Parser<'_> {
             None => "the end of the scheme".to_string(),
             Some(Tok::Upper(s) | Tok::Lower(s) | Tok::Number(s)) => format!("'{s}'"),
             Some(Tok::Punct(c)) => format!("'{c}'"),
+            Some(Tok::DotDot) => "'..'".to_string(),
         }
     }
 
@@ -184,6 +185,31 @@ impl Parser<'_> {
             Some(Tok::Lower(k)) if k == "def" => {
                 self.pos += 1;
                 script.defs.push(self.def()?);
+            }
+            Some(Tok::Lower(k)) if k == "param" => {
+                let start = self.here().start;
+                self.pos += 1;
+                let (name, name_span) = self.lower("a parameter name after 'param'")?;
+                if !matches!(self.peek(), Some(Tok::Lower(k)) if k == "in") {
+                    return Err(
+                        self.expected("'in' after the parameter name, as in 'param l in 0..1/2;'")
+                    );
+                }
+                self.pos += 1;
+                let lo = self.expr()?;
+                if self.peek() != Some(&Tok::DotDot) {
+                    return Err(self.expected("'..' between the bounds of the range"));
+                }
+                self.pos += 1;
+                let hi = self.expr()?;
+                self.expect(';', "';' after the parameter's range")?;
+                script.params.push(Param {
+                    name,
+                    name_span,
+                    lo,
+                    hi,
+                    span: start..self.prev_end(),
+                });
             }
             _ => script.steps.push(self.step()?),
         }
