@@ -17,7 +17,7 @@ pub use dpd_core::{
     scheme, system, BlowUp, CheckpointError, DynScheme, Flow, ParamError, Params, PeriodicBox,
     Scheme, Stage, SweepOrder, System, SystemBuilder, Vec3,
 };
-pub use dpd_ir::{analysis, lang, program, Analysis, Program};
+pub use dpd_ir::{analysis, design, lang, program, Analysis, Program};
 pub use dpd_macros::dpd_scheme;
 pub use dpd_schemes as schemes;
 

@@ -3,6 +3,7 @@
 //! time, and the run-time crates use the same code for schemes given as strings.
 
 pub mod analysis;
+pub mod design;
 pub mod lang;
 pub mod program;
 

@@ -1,6 +1,7 @@
 //! Subcommands of the `dpd` program, one module each.
 
 mod check;
+mod design;
 mod orderings;
 mod progress;
 mod run;
@@ -30,6 +31,8 @@ enum Command {
     Sweep(sweep::Args),
     /// Order analysis of a registry name or a scheme string
     Check(check::Args),
+    /// Solve a family's order conditions, then minimise its error norm
+    Design(design::Args),
     /// Enumerate the distinct consistent splitting strings up to a length
     Orderings(orderings::Args),
     /// List the named schemes with their cost and analysed orders
@@ -46,6 +49,7 @@ pub fn main(cli: Cli) -> ExitCode {
         Some(Command::Sweep(args)) => sweep::main(args),
         Some(Command::Check(args)) => check::main(args),
         Some(Command::Orderings(args)) => orderings::main(args),
+        Some(Command::Design(args)) => design::main(args),
         Some(Command::Schemes(args)) => schemes::main(args),
         Some(Command::Stability(args)) => stability::main(args),
     }

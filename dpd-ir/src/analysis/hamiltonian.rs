@@ -83,6 +83,22 @@ pub(crate) fn deterministic_order<S: Scalar>(factors: &[(Letter, S)], max_degree
     }
 }
 
+/// The word coefficients of the step minus those of `exp(A + B)`, degrees 2 to `order`: all
+/// zero iff the deterministic order is at least `order` (given consistency).
+pub(crate) fn deterministic_residuals(factors: &[(Letter, f64)], order: u32) -> Vec<f64> {
+    let alg = hamiltonian_algebra(order);
+    let p = product(&alg, factors);
+    let mut factorial = 1.0;
+    let mut out = Vec::new();
+    for n in 1..=order {
+        factorial *= f64::from(n);
+        if n >= 2 {
+            out.extend(alg.terms_of_degree(&p, n).map(|(_, c)| c - 1.0 / factorial));
+        }
+    }
+    out
+}
+
 /// The leading error term of the Hamiltonian part: `log(step) - (A + B)` at degree
 /// `order + 1`, as coordinates in the Lyndon basis (module `lyndon`), with its Euclidean norm.
 #[derive(Clone, Debug, PartialEq)]

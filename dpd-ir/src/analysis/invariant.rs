@@ -226,6 +226,31 @@ pub(crate) fn invariant_measure_bound<S: Scalar>(
     })
 }
 
+/// The reduced coefficients of `L_0 ... L_(order-1)` (every word of degree 1 to `order`), all
+/// zero iff the bound is at least `order`. `None` for F-based schemes.
+pub(crate) fn invariant_residuals(
+    stages: &[Stage],
+    coeffs: &[f64],
+    pairs: usize,
+    order: u32,
+) -> Option<Vec<f64>> {
+    let has = |flow: Flow| stages.iter().any(|s| s.flow == flow);
+    let letters = Letters::new(pairs, has(Flow::T), has(Flow::Bbk));
+    let factors = adjoint_factors(stages, coeffs, &letters)?;
+    let alg = Algebra::new(&letters.algebra_letters, order);
+    let step = factors.iter().fold(alg.one(), |acc, f| {
+        let e = alg.exp(&alg.linear(f));
+        alg.mul(&acc, &e)
+    });
+    let log = alg.log(&step);
+    let mut out = Vec::new();
+    for degree in 1..=order {
+        let reduced = reduce(&alg, &letters, &log, degree);
+        out.extend(alg.terms_of_degree(&reduced, degree).map(|(_, c)| *c));
+    }
+    Some(out)
+}
+
 /// The degree-`degree` part of `x` reduced modulo the left ideal (see the module docs).
 fn reduce<S: Scalar>(alg: &Algebra, letters: &Letters, x: &Series<S>, degree: u32) -> Series<S> {
     let mut out = alg.zero();

@@ -26,6 +26,9 @@ pub use prk::{analyse_prk, prk3_conditions, prk_stages};
 pub use report::Analysis;
 pub use scalar::FLOAT_TOLERANCE;
 
+/// Highest invariant-measure order [`order_residuals`] can impose.
+pub const MAX_INVARIANT_ORDER: u32 = 5;
+
 use crate::program::Stage;
 use scalar::{Rational, Scalar};
 
@@ -83,6 +86,31 @@ fn exact_coefficients(stages: &[Stage]) -> Option<Vec<Rational>> {
         .iter()
         .map(|s| s.coeff.exact.as_ref().and_then(Rational::from_big))
         .collect()
+}
+
+/// Residuals of the order conditions of one step, in `f64`: the coefficient sums minus one
+/// (the O sum only with a thermostat), the deterministic conditions up to order `det` and the
+/// invariant-measure conditions `L_0 ... L_(inv-1)` (K = `pairs` pair generators). All are zero
+/// iff the step is consistent with deterministic order >= `det` and invariant-measure bound
+/// >= `inv`. `None` when `inv > 0` and the criterion does not apply (F stages).
+pub fn order_residuals(stages: &[Stage], det: u32, inv: u32, pairs: usize) -> Option<Vec<f64>> {
+    let coeffs: Vec<f64> = stages.iter().map(|s| s.coeff.value).collect();
+    let (sums, _) = consistency::coefficient_sums(stages, &coeffs);
+    let mut out = vec![sums.a - 1.0, sums.b - 1.0];
+    if sums.thermostat {
+        out.push(sums.o - 1.0);
+    }
+    let factors = hamiltonian::hamiltonian_factors(stages, &coeffs);
+    out.extend(hamiltonian::deterministic_residuals(&factors, det.min(12)));
+    if inv > 0 {
+        out.extend(invariant::invariant_residuals(
+            stages,
+            &coeffs,
+            pairs.clamp(2, 3),
+            inv.min(5),
+        )?);
+    }
+    Some(out)
 }
 
 fn analyse_in<S: Scalar>(stages: &[Stage], coeffs: &[S], options: &Options) -> Analysis {
