@@ -252,7 +252,7 @@ pub fn compact(r: &BigRational) -> String {
     let rounded = !(&num % &den).is_zero()
         || q_digits
             .get(17..)
-            .is_some_and(|t| t.trim_matches('0') != "");
+            .is_some_and(|t| !t.trim_matches('0').is_empty());
     let mantissa = q_digits[..17.min(q_digits.len())].trim_end_matches('0');
     let mantissa = match mantissa.split_at(1) {
         (lead, "") => lead.to_string(),
