@@ -1,6 +1,7 @@
 //! `dpd run`: one scene with one scheme; prints the observables averaged over the runs.
 
 use super::{bad_input, print_json, progress, INTERRUPTED};
+use dpd::error::shown;
 use dpd::schemes::registry::resolve;
 use dpd::Scheme;
 use dpd_measure::flows::ProfileSpec;
@@ -57,12 +58,13 @@ pub fn main(args: Args) -> ExitCode {
     };
     let scheme = match resolve(&scene.scheme) {
         Ok(scheme) => scheme,
-        Err(e) => return bad_input(format!("invalid scheme = {:?}: {e}", scene.scheme)),
+        Err(e) => return bad_input(format!("invalid scheme: {e}")),
     };
     let program = scheme.program().map(|p| p.to_string());
+    let name = shown(&scene.scheme);
     let what = match &program {
-        Some(p) => format!("scheme {} = {p}", scene.scheme),
-        None => format!("scheme {}", scene.scheme),
+        Some(p) => format!("scheme {name} = {p}"),
+        None => format!("scheme {name}"),
     };
     eprint!("{}", header(&scene, &what, &[scene.dt]));
     let jobs: Vec<Job> = (0..scene.runs)
@@ -74,7 +76,7 @@ pub fn main(args: Args) -> ExitCode {
         .collect();
     let bar = progress::bar(
         scene.steps(scene.dt) * scene.runs,
-        format!("{} dt = {}", scene.scheme, scene.dt),
+        format!("{name} dt = {}", shown(&scene.dt.to_string())),
     );
     let results = Mutex::new(Vec::new());
     let control = Control {
@@ -137,7 +139,8 @@ pub fn header(scene: &Scene, what: &str, dts: &[f64]) -> String {
     let mut out = format!("# dpd: {what}\n");
     for &dt in dts {
         out += &format!(
-            "# at dt = {dt:.4}: {} steps, a sample every {} steps in the last {} %\n",
+            "# at dt = {}: {} steps, a sample every {} steps in the last {} %\n",
+            shown(&format!("{dt:.4}")),
             scene.steps(dt),
             scene.sample_every(dt),
             100.0 * scene.average_fraction
