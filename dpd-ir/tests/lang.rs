@@ -515,7 +515,7 @@ mod free_parameters {
         assert_eq!(f.names(), ["l"]);
         assert_eq!((f.parameters[0].lo, f.parameters[0].hi), (0.0, 0.5));
         let p = f.at(&[0.25]).unwrap();
-        assert_eq!(p.to_string(), "B(0.25) A(1/2) B(0.5) A(1/2) B(0.25) O(1)");
+        assert_eq!(p.to_string(), "B(0.25000000000000000) A(1/2) B(0.50000000000000000) A(1/2) B(0.25000000000000000) O(1)");
         assert_eq!(p.force_evaluations_per_step(), 2);
         assert_eq!(one_err(MCLACHLAN, "'l' is a free parameter"), "l");
         assert!(f.at(&[]).is_err());
