@@ -3,6 +3,7 @@
 mod check;
 mod orderings;
 mod progress;
+mod reproduce;
 mod run;
 mod schemes;
 mod stability;
@@ -34,6 +35,8 @@ enum Command {
     Orderings(orderings::Args),
     /// List the named schemes with their cost and analysed orders
     Schemes(schemes::Args),
+    /// Reproduce the tables and figures of the source papers: published against measured
+    Reproduce(reproduce::Args),
     /// Run every named scheme over a matrix of gamma, mass and dt: completed, blow-up, insane
     Stability(stability::Args),
 }
@@ -48,6 +51,7 @@ pub fn main(cli: Cli) -> ExitCode {
         Some(Command::Orderings(args)) => orderings::main(args),
         Some(Command::Schemes(args)) => schemes::main(args),
         Some(Command::Stability(args)) => stability::main(args),
+        Some(Command::Reproduce(args)) => reproduce::main(args),
     }
 }
 
