@@ -16,5 +16,5 @@ pub mod sweep;
 pub use aggregate::Aggregate;
 pub use critical::{critical_dt, Critical};
 pub use runner::{run, Control, RunResult};
-pub use scene::{Observable, Overrides, Scene, SceneError, SweepOverrides};
+pub use scene::{Observable, Overrides, Scene, SceneError, SchemeList, SweepOverrides};
 pub use sweep::{SchemeSummary, SweepResults};
