@@ -9,6 +9,7 @@
 //! them.
 
 use super::flows::{ProfileSpec, WallSpec};
+use super::trajectory::{initial_state, InitSpec, TrajectorySpec};
 use dpd_core::init::{cubic_box, freeze_outside, maxwell_momenta, uniform_positions};
 use dpd_core::system::DEFAULT_SKIN;
 use dpd_core::{ParamError, Params, PeriodicBox, System, Vec3};
@@ -67,6 +68,9 @@ pub struct Scene {
     pub body_force: Option<f64>,
     pub walls: Option<WallSpec>,
     pub profile: Option<ProfileSpec>,
+    pub trajectory: Option<TrajectorySpec>,
+    /// Start from a frame of a GSD file, `"FILE.gsd"` (its last frame) or `"FILE.gsd:K"`.
+    pub init: Option<String>,
 }
 
 /// Radial distribution function accumulated over the averaging window.
@@ -155,6 +159,8 @@ impl Default for Scene {
             body_force: None,
             walls: None,
             profile: None,
+            trajectory: None,
+            init: None,
         }
     }
 }
@@ -341,6 +347,14 @@ impl Scene {
         }
         set!(dt_min, dt_max, dt_factor, reference, observable);
         self.sweep = Some(w);
+        if let Some(t) = &self.trajectory {
+            return Err(ParamError::new(
+                "trajectory.file",
+                t.file.display(),
+                "trajectories are written by `dpd run` only: remove [trajectory] for a sweep",
+            )
+            .into());
+        }
         self.validate()?;
         Ok(())
     }
@@ -441,6 +455,12 @@ impl Scene {
                 "must be 0 (x), 1 (y) or 2 (z)",
             )?;
         }
+        if let Some(t) = &self.trajectory {
+            t.validate()?;
+        }
+        if let Some(init) = &self.init {
+            InitSpec::parse(init)?;
+        }
         if let Some(r) = &self.rdf {
             let half = 0.5 * edge;
             require(
@@ -525,16 +545,28 @@ impl Scene {
     }
 
     /// The initial state of run `seed` at time step `dt`: uniform positions, Maxwell momenta
-    /// with the total momentum removed; with `[walls]`, the particles outside the channel are
-    /// frozen (and their momenta zeroed).
+    /// with the total momentum removed (with `init`, the frame's positions, velocities, masses
+    /// and types instead); with `[walls]`, the particles outside the channel are frozen (and
+    /// their momenta zeroed).
     pub fn system(&self, dt: f64, seed: u64) -> Result<System, ParamError> {
         let bx = self.periodic_box()?;
         let n = self.particles();
-        let masses = vec![self.mass; n];
-        let q = uniform_positions(&bx, n, seed);
-        let mut p = maxwell_momenta(&masses, self.kbt, seed);
-        let mut builder = System::builder(self.params()?, bx, q.clone())
+        let params = self.params()?;
+        let (q, mut p, masses, kinds) = match &self.init {
+            Some(init) => {
+                let frame = InitSpec::parse(init)?.read(n, bx.lengths().into())?;
+                initial_state(&frame, self.mass, params.types())?
+            }
+            None => {
+                let masses = vec![self.mass; n];
+                let q = uniform_positions(&bx, n, seed);
+                let p = maxwell_momenta(&masses, self.kbt, seed);
+                (q, p, masses, vec![0; n])
+            }
+        };
+        let mut builder = System::builder(params, bx, q.clone())
             .masses(masses)
+            .kinds(kinds)
             .dt(dt)
             .seed(seed);
         if let Some(w) = &self.walls {

@@ -7,7 +7,8 @@ use dpd::Scheme;
 use dpd_measure::flows::ProfileSpec;
 use dpd_measure::plot::profile_plot;
 use dpd_measure::runner::{lock, run_parallel, Control, Job, RunResult};
-use dpd_measure::{report, Aggregate, Overrides, Scene};
+use dpd_measure::trajectory::TrajectorySpec;
+use dpd_measure::{report, Aggregate, Overrides, Scene, SceneError};
 use serde::Serialize;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -24,6 +25,15 @@ pub struct Args {
     /// With `[profile]`: write each run's profile as `profile-seed<k>.csv` and `.svg` here
     #[arg(long, value_name = "DIR")]
     profile_dir: Option<PathBuf>,
+    /// Write a trajectory here (.gsd, .xyz, .lammpstrj/.dump); replaces the scene's [trajectory]
+    #[arg(long, value_name = "FILE", requires = "every")]
+    trajectory: Option<PathBuf>,
+    /// Time between trajectory frames (with --trajectory)
+    #[arg(long, value_name = "T", requires = "trajectory")]
+    every: Option<f64>,
+    /// Start from a frame of a GSD file: FILE.gsd (its last frame) or FILE.gsd:K
+    #[arg(long, value_name = "FILE.gsd[:K]")]
+    init: Option<String>,
 }
 
 /// What `dpd run --json` prints: the combined observables of the runs, their details and the
@@ -42,7 +52,7 @@ struct RunReport<'a> {
 }
 
 pub fn main(args: Args) -> ExitCode {
-    let scene = match Scene::resolve(&args.scene) {
+    let scene = match Scene::resolve(&args.scene).and_then(|s| with_files(s, &args)) {
         Ok(scene) => scene,
         Err(e) => return bad_input(e),
     };
@@ -109,6 +119,18 @@ pub fn main(args: Args) -> ExitCode {
     } else {
         code
     }
+}
+
+/// `scene` with `--trajectory`/`--every` and `--init` applied, validated.
+fn with_files(mut scene: Scene, args: &Args) -> Result<Scene, SceneError> {
+    if let (Some(file), Some(every)) = (&args.trajectory, args.every) {
+        scene.trajectory = Some(TrajectorySpec::new(file.clone(), every));
+    }
+    if let Some(init) = &args.init {
+        scene.init = Some(init.clone());
+    }
+    scene.validate()?;
+    Ok(scene)
 }
 
 /// Every effective parameter as TOML, after a comment line on `what` and on the steps and
