@@ -17,6 +17,7 @@
 use crate::boundary::{LeesEdwards, PeriodicBox};
 use crate::error::CheckpointError;
 use crate::params::Params;
+use crate::stamp::Stamp;
 use crate::system::System;
 use crate::walls::Walls;
 use crate::Vec3;
@@ -88,7 +89,10 @@ impl System {
             mass: self.mass.clone(),
             kind: self.kind.clone(),
             id: self.id.clone(),
-            full_forces: self.full_valid.then(|| self.full.clone()),
+            full_forces: self
+                .full_at
+                .is_fresh(self.positions)
+                .then(|| self.full.clone()),
             list_reference: self.list.reference().to_vec(),
             shear: shear_state(self.shear.as_ref()),
             list_shear: shear_state(self.list.reference_shear()),
@@ -222,7 +226,7 @@ impl System {
                 )));
             }
             sys.full = full;
-            sys.full_valid = true;
+            sys.full_at = Stamp::at(sys.positions);
         }
         Ok((sys, payload.scheme))
     }

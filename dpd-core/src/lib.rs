@@ -22,6 +22,7 @@ mod disjoint;
 pub mod error;
 pub mod flow;
 pub mod force;
+mod guard;
 pub mod init;
 mod lanes;
 pub mod neighbour;
@@ -32,6 +33,7 @@ pub mod potential;
 pub mod reference;
 pub mod rng;
 pub mod scheme;
+mod stamp;
 pub mod system;
 pub mod walls;
 

@@ -7,6 +7,7 @@ use crate::neighbour::VerletList;
 use crate::observe::ImpulseVirial;
 use crate::pairs::{Bound, PairTable, Run};
 use crate::params::Params;
+use crate::stamp::{Generation, Stamp};
 use crate::walls::{FrozenWalls, Walls};
 use crate::{Tensor, Vec3};
 use rayon::prelude::*;
@@ -63,12 +64,14 @@ pub struct System {
     pub(crate) seed: u64,
     pub(crate) step: u64,
     pub(crate) list: VerletList,
+    /// Generation of the positions, advanced by every change of them (see [`crate::stamp`]).
+    pub(crate) positions: Generation,
     pub(crate) pairs: PairTable,
-    pub(crate) pairs_valid: bool,
+    pub(crate) pairs_at: Stamp,
     pub(crate) conservative: Vec<Vec3>,
-    pub(crate) conservative_valid: bool,
+    pub(crate) conservative_at: Stamp,
     pub(crate) full: Vec<Vec3>,
-    pub(crate) full_valid: bool,
+    pub(crate) full_at: Stamp,
     /// Pair virial of the dissipative and random parts of `full`, when impulses were being
     /// recorded as it was evaluated.
     pub(crate) full_virial: Option<Tensor>,
@@ -78,7 +81,7 @@ pub struct System {
     pub(crate) counters: Counters,
     /// Sum over this step's drifts of the largest single-particle drift length.
     pub(crate) drift_bound: f64,
-    pub(crate) backup: crate::scheme::Backup,
+    pub(crate) backup: crate::guard::Backup,
 }
 
 /// Builds a [`System`]; every input is validated by [`SystemBuilder::build`].
@@ -297,12 +300,13 @@ impl SystemBuilder {
             seed: self.seed,
             step: 0,
             list: VerletList::new(self.skin),
+            positions: Generation::default(),
             pairs: PairTable::default(),
-            pairs_valid: false,
+            pairs_at: Stamp::default(),
             conservative: Vec::new(),
-            conservative_valid: false,
+            conservative_at: Stamp::default(),
             full: Vec::new(),
-            full_valid: false,
+            full_at: Stamp::default(),
             full_virial: None,
             impulses: None,
             counters: Counters::default(),
@@ -462,11 +466,9 @@ impl System {
         }
     }
 
-    /// Drop every cache tied to the positions.
+    /// Start a new generation of the positions: every cache tied to them is stale.
     pub(crate) fn positions_changed(&mut self) {
-        self.pairs_valid = false;
-        self.conservative_valid = false;
-        self.full_valid = false;
+        self.positions.advance();
         self.list.positions_changed();
     }
 
@@ -486,7 +488,7 @@ impl System {
     }
 
     pub(crate) fn ensure_pairs(&mut self) {
-        if !self.pairs_valid {
+        if !self.pairs_at.is_fresh(self.positions) {
             self.prepare_list();
             self.pairs.collect(
                 &self.list,
@@ -509,7 +511,9 @@ impl System {
         f: impl FnOnce(&System, &PairTable, &[Vec3]) -> R,
     ) -> R {
         let shear = self.shear.as_ref();
-        if self.pairs_valid || !self.list.needs_rebuild(&self.q, &self.bx, shear) {
+        if self.pairs_at.is_fresh(self.positions)
+            || !self.list.needs_rebuild(&self.q, &self.bx, shear)
+        {
             self.ensure_conservative();
             return f(self, &self.pairs, &self.conservative);
         }
@@ -529,7 +533,7 @@ impl System {
 
     /// Count a fill of the pair table from the current positions, which is now valid.
     fn pairs_filled(&mut self) {
-        self.pairs_valid = true;
+        self.pairs_at = Stamp::at(self.positions);
         self.counters.pair_distance_evaluations += 1;
     }
 
@@ -558,8 +562,8 @@ impl System {
         }
         // Positions changed or the list was never built: the conservative forces are stale;
         // full forces can be valid (restored from a checkpoint) and move with their particles.
-        debug_assert!(!self.conservative_valid);
-        if self.full_valid {
+        debug_assert!(!self.conservative_at.is_fresh(self.positions));
+        if self.full_at.is_fresh(self.positions) {
             permute(&mut self.full, order);
         }
         self.list
@@ -590,7 +594,7 @@ impl System {
     }
 
     pub(crate) fn ensure_conservative(&mut self) {
-        if self.conservative_valid {
+        if self.conservative_at.is_fresh(self.positions) {
             return;
         }
         if !self.fills_plainly() {
@@ -616,14 +620,14 @@ impl System {
                 .collect_then(&self.list, &self.q, &self.bx, &self.params, out, each);
             self.pairs_filled();
         }
-        self.conservative_valid = true;
+        self.conservative_at = Stamp::at(self.positions);
         self.counters.force_evaluations += 1;
     }
 
     /// Full forces for an F stage: reused while positions are unchanged, otherwise evaluated
     /// at the current momenta with the noise of `stream` in the current step.
     pub(crate) fn ensure_full(&mut self, stream: u8) {
-        if self.full_valid {
+        if self.full_at.is_fresh(self.positions) {
             return;
         }
         if self.fills_plainly() {
@@ -635,7 +639,7 @@ impl System {
             self.ensure_pairs();
             force::full(self, stream);
         }
-        self.full_valid = true;
+        self.full_at = Stamp::at(self.positions);
         self.counters.force_evaluations += 1;
     }
 
@@ -643,7 +647,10 @@ impl System {
     /// ([`PairTable::collect_then`]): the table is stale, the box is periodic without walls,
     /// and no pair impulses are being recorded.
     fn fills_plainly(&self) -> bool {
-        !self.pairs_valid && self.shear.is_none() && self.walls.is_none() && self.impulses.is_none()
+        !self.pairs_at.is_fresh(self.positions)
+            && self.shear.is_none()
+            && self.walls.is_none()
+            && self.impulses.is_none()
     }
 }
 

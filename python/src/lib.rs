@@ -148,7 +148,8 @@ fn sweep(
 
 /// Compose, check and run splitting integrators for dissipative particle dynamics.
 #[pymodule]
-fn dpd(m: &Bound<'_, PyModule>) -> PyResult<()> {
+#[pyo3(name = "dpd")]
+fn dpd_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(check, m)?)?;
     m.add_function(wrap_pyfunction!(schemes, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;

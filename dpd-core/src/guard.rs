@@ -1,0 +1,114 @@
+//! The guarded step: a step that blows up is undone, and the state before it is kept.
+
+use crate::boundary::LeesEdwards;
+use crate::error::BlowUp;
+use crate::observe::ImpulseVirial;
+use crate::scheme::Scheme;
+use crate::stamp::Stamp;
+use crate::system::{on_all_threads, System};
+use crate::{Tensor, Vec3};
+use rayon::prelude::*;
+
+/// The state a failed step must not lose.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Backup {
+    q: Vec<Vec3>,
+    /// Particle ids in storage order before the step (a step may re-sort the particles).
+    id: Vec<u32>,
+    p: Vec<Vec3>,
+    full: Vec<Vec3>,
+    full_valid: bool,
+    full_virial: Option<Tensor>,
+    shear: Option<LeesEdwards>,
+    impulses: Option<ImpulseVirial>,
+}
+
+impl System {
+    /// Take `steps` steps of `scheme`, each guarded: a step that produces a non-finite position
+    /// or momentum, or that may have moved a particle by more than half the shortest box edge
+    /// (the sum over its drifts of the largest drift length exceeds it), is undone and
+    /// reported; the system is then in the state after the last good step.
+    pub fn advance<S: Scheme + ?Sized>(&mut self, scheme: &S, steps: u64) -> Result<(), BlowUp> {
+        let mut backup = std::mem::take(&mut self.backup);
+        let result = (0..steps).try_for_each(|_| self.guarded_step(scheme, &mut backup));
+        self.backup = backup;
+        result
+    }
+
+    fn guarded_step<S: Scheme + ?Sized>(
+        &mut self,
+        scheme: &S,
+        backup: &mut Backup,
+    ) -> Result<(), BlowUp> {
+        copy(&mut backup.q, &self.q);
+        copy(&mut backup.p, &self.p);
+        copy(&mut backup.id, &self.id);
+        backup.full_valid = self.full_at.is_fresh(self.positions);
+        if backup.full_valid {
+            copy(&mut backup.full, &self.full);
+        }
+        backup.full_virial = self.full_virial;
+        backup.shear = self.shear;
+        backup.impulses = self.impulses;
+        self.drift_bound = 0.0;
+        scheme.step(self);
+        let reason = if !self.drift_bound.is_finite() || !finite(&self.q) || !finite(&self.p) {
+            Some("a position or momentum became non-finite".to_string())
+        } else if self.drift_bound > 0.5 * self.bx.min_length() {
+            Some(format!(
+                "a particle may have moved {:.3e} in one step, more than half the box edge {}",
+                self.drift_bound,
+                self.bx.min_length()
+            ))
+        } else {
+            None
+        };
+        match reason {
+            None => {
+                self.step += 1;
+                Ok(())
+            }
+            Some(reason) => {
+                std::mem::swap(&mut self.q, &mut backup.q);
+                std::mem::swap(&mut self.p, &mut backup.p);
+                self.restore_order(&backup.id);
+                self.positions_changed();
+                if backup.full_valid {
+                    std::mem::swap(&mut self.full, &mut backup.full);
+                    self.full_at = Stamp::at(self.positions);
+                }
+                self.full_virial = backup.full_virial;
+                self.shear = backup.shear;
+                self.impulses = backup.impulses;
+                Err(BlowUp {
+                    step: self.step,
+                    scheme: scheme.name().to_string(),
+                    reason,
+                })
+            }
+        }
+    }
+}
+
+/// `to <- from`, on all threads for large systems.
+fn copy<T: Copy + Send + Sync>(to: &mut Vec<T>, from: &[T]) {
+    if on_all_threads(from.len()) {
+        to.resize(from.len(), from[0]);
+        to.par_chunks_mut(4096)
+            .zip(from.par_chunks(4096))
+            .for_each(|(t, f)| t.copy_from_slice(f));
+    } else {
+        to.clear();
+        to.extend_from_slice(from);
+    }
+}
+
+/// Whether every component of every vector is finite.
+fn finite(v: &[Vec3]) -> bool {
+    let ok = |v: &Vec3| v.iter().all(|x| x.is_finite());
+    if on_all_threads(v.len()) {
+        v.par_iter().with_min_len(4096).all(ok)
+    } else {
+        v.iter().all(ok)
+    }
+}
