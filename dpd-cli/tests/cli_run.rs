@@ -56,3 +56,56 @@ fn bad_input_is_refused_naming_the_key() {
         "scheme",
     );
 }
+
+#[test]
+fn edge_values_are_refused_naming_the_flag_and_the_limit() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = write(dir.path(), "tiny.toml", TINY);
+    let run = |extra: &[&str]| {
+        let mut args = vec!["run", "--scene", &scene];
+        args.extend_from_slice(extra);
+        dpd(dir.path(), &args)
+    };
+    for (args, named) in [
+        (
+            &["--dt", "-1"][..],
+            "invalid dt = -1: must be finite and > 0",
+        ),
+        (&["--gamma", "-2"], "invalid gamma = -2"),
+        (&["--n", "-3"], "'--n <N>'"),
+        (
+            &["--dt", "1e300"],
+            "invalid dt = 1e300: gives round(time / dt) = 0 steps",
+        ),
+        (&["--time", "0.01", "--dt", "0.05"], "0 steps"),
+        (
+            &["--time", "0.1", "--dt", "1e-300"],
+            "more than the 1e9 steps",
+        ),
+        (
+            &["--threads", "100000"],
+            "invalid threads = 100000: must be at most",
+        ),
+        (&["--density", "1e9"], "invalid density = 1000000000"),
+    ] {
+        refused(&run(args), named);
+    }
+}
+
+#[test]
+fn a_bad_scheme_string_is_shown_once_with_a_caret_and_escaped() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = write(dir.path(), "tiny.toml", TINY);
+    let long = format!("{}Q", "A".repeat(5000));
+    for (scheme, caret) in [
+        (long.as_str(), "...AAAAAAAAAAAAAAAAAAAAAAAAAAAAAAQ\n"),
+        ("AB\u{1b}[2JOBA", "AB\\u{1b}[2JOBA\n    ^^^^^^"),
+        ("A(NaN) B", "'NaN' is not a finite number"),
+    ] {
+        let out = dpd(dir.path(), &["run", "--scene", &scene, "--scheme", scheme]);
+        refused(&out, caret);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(stderr.len() < 600, "{} bytes: {stderr}", stderr.len());
+        assert!(!stderr.contains('\u{1b}') && !stderr.contains("registered"));
+    }
+}

@@ -15,12 +15,39 @@ pub struct ParamError {
 }
 
 impl ParamError {
+    /// The error for `field`, with `value` as [`shown`] prints it.
     pub fn new(field: impl Into<String>, value: impl ToString, allowed: impl Into<String>) -> Self {
         ParamError {
             field: field.into(),
-            value: value.to_string(),
+            value: shown(&value.to_string()),
             allowed: allowed.into(),
         }
+    }
+}
+
+/// Longest value a [`ParamError`] prints, in characters.
+const LONGEST_VALUE: usize = 80;
+
+/// `value` as printed in a message: a number written with more than 20 characters in
+/// scientific notation (`1e300`, not 301 digits), control characters escaped, and a text
+/// longer than 80 characters cut, with `...`.
+pub fn shown(value: &str) -> String {
+    let value = match value.parse::<f64>() {
+        Ok(x) if value.len() > 20 && x.is_finite() => format!("{x:e}"),
+        _ => value.to_string(),
+    };
+    let escaped: String = value
+        .chars()
+        .map(|c| match c {
+            c if c.is_control() => c.escape_default().to_string(),
+            c => c.to_string(),
+        })
+        .collect();
+    match escaped.char_indices().nth(LONGEST_VALUE - 3) {
+        Some((cut, _)) if escaped.chars().count() > LONGEST_VALUE => {
+            format!("{}...", &escaped[..cut])
+        }
+        _ => escaped,
     }
 }
 
@@ -99,4 +126,20 @@ pub enum CheckpointError {
         #[source]
         source: ParamError,
     },
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn values_are_shown_compactly() {
+        assert_eq!(ParamError::new("dt", 1e300, "x").value, "1e300");
+        assert_eq!(ParamError::new("dt", 1e-300, "x").value, "1e-300");
+        assert_eq!(ParamError::new("dt", 0.05, "x").value, "0.05");
+        assert_eq!(ParamError::new("n", 500, "x").value, "500");
+        assert_eq!(shown("A\u{1b}B"), "A\\u{1b}B");
+        let long = shown(&"A".repeat(1000));
+        assert_eq!((long.len(), &long[77..]), (80, "..."));
+    }
 }

@@ -209,13 +209,40 @@ fn coeffs_equal(a: &Coeff, b: &Coeff) -> bool {
 }
 
 impl fmt::Display for Coeff {
-    /// Exact values as fractions (`1/2`, `-3`), others with round-trip precision.
+    /// Exact values as fractions (`1/2`, `-3`), others with 17 significant digits
+    /// (`0.67560359597982889`, `-1.7024143839193153e-20`): the scheme language reads such a
+    /// literal back as the same `f64`, and as inexact (it has at least 13 significant digits),
+    /// so a printed program compiles to the same analysis.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match &self.exact {
             Some(r) => write!(f, "{r}"),
-            None => write!(f, "{:?}", self.value),
+            None => f.write_str(&seventeen_digits(self.value)),
         }
     }
+}
+
+/// `x` with 17 significant digits, positional for magnitudes in [1e-4, 1e15), else in
+/// scientific notation; trailing zeros are kept (they mark the value as inexact).
+fn seventeen_digits(x: f64) -> String {
+    let sci = format!("{x:.16e}");
+    let Some((mantissa, exponent)) = sci.split_once('e') else {
+        return sci;
+    };
+    let exponent: i32 = exponent.parse().unwrap_or(0);
+    if x == 0.0 || !(-4..15).contains(&exponent) {
+        return sci;
+    }
+    let (sign, digits) = match mantissa.strip_prefix('-') {
+        Some(rest) => ("-", rest.replace('.', "")),
+        None => ("", mantissa.replace('.', "")),
+    };
+    let text = if exponent < 0 {
+        format!("0.{}{digits}", "0".repeat((-exponent - 1) as usize))
+    } else {
+        let point = exponent as usize + 1;
+        format!("{}.{}", &digits[..point], &digits[point..])
+    };
+    format!("{sign}{text}")
 }
 
 impl fmt::Display for Program {

@@ -62,7 +62,7 @@ impl Input {
         let span = self
             .subspan(src, &d.span)
             .unwrap_or_else(|| self.source.span());
-        syn::Error::new(span, format!("{}{}", d.message, excerpt(src, &d.span)))
+        syn::Error::new(span, d.render(src))
     }
 
     /// The span of `range` (bytes of the value) inside the literal token, when the literal
@@ -76,55 +76,5 @@ impl Input {
             && repr[start + src.len()..].trim_start_matches('#') == "\"";
         verbatim.then_some(())?;
         token.subspan(start + range.start..start + range.end)
-    }
-}
-
-/// The line of `src` holding `range`, with carets under the range: "\n  ABQ\n    ^". Empty
-/// when the range is the whole scheme (the literal itself is underlined then).
-fn excerpt(src: &str, range: &Range<usize>) -> String {
-    if src.trim().is_empty() || (range.start == 0 && range.end >= src.len()) {
-        return String::new();
-    }
-    marked_line(src, range).unwrap_or_default()
-}
-
-/// `None` if `range` is not on character boundaries of `src`.
-fn marked_line(src: &str, range: &Range<usize>) -> Option<String> {
-    let start = range.start;
-    let line_start = src.get(..start)?.rfind('\n').map_or(0, |i| i + 1);
-    let line_end = src
-        .get(start..)?
-        .find('\n')
-        .map_or(src.len(), |i| start + i);
-    let end = range.end.clamp(start, line_end);
-    let width = |r: Range<usize>| src.get(r).map(|s| s.chars().count());
-    Some(format!(
-        "\n  {}\n  {}{}",
-        src[line_start..line_end].replace('\t', " "),
-        " ".repeat(width(line_start..start)?),
-        "^".repeat(width(start..end)?.max(1))
-    ))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::excerpt;
-
-    #[test]
-    fn excerpt_marks_the_range_on_its_line() {
-        assert_eq!(excerpt("ABQ", &(2..3)), "\n  ABQ\n    ^");
-        assert_eq!(
-            excerpt("let x = 1;\nA(y) B", &(13..14)),
-            "\n  A(y) B\n    ^"
-        );
-        assert_eq!(excerpt("AB(1/0", &(6..6)), "\n  AB(1/0\n        ^");
-    }
-
-    #[test]
-    fn no_excerpt_for_the_whole_scheme_or_a_bad_range() {
-        assert_eq!(excerpt("BOB", &(0..3)), "");
-        assert_eq!(excerpt("  ", &(0..0)), "");
-        assert_eq!(excerpt("A\u{e9}B", &(2..3)), "");
-        assert_eq!(excerpt("AB", &(5..6)), "");
     }
 }

@@ -12,6 +12,7 @@ pub mod report;
 pub mod runner;
 pub mod scene;
 pub mod sweep;
+pub mod trajectory;
 
 pub use aggregate::Aggregate;
 pub use critical::{critical_dt, Critical};

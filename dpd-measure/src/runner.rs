@@ -3,6 +3,7 @@
 
 use super::flows::{FlowObservers, Viscosity};
 use super::scene::Scene;
+use super::trajectory::Recorder;
 use dpd_core::observe::{thermo, ProfileRow, Rdf, ThermoAverages, Vacf};
 use dpd_core::{ParamError, Scheme};
 use serde::{Deserialize, Serialize};
@@ -121,6 +122,10 @@ pub fn run(
         None => None,
     };
     let mut flows = FlowObservers::new(scene, &sys)?;
+    let mut trajectory = match &scene.trajectory {
+        Some(t) => Some(Recorder::start(t, dt, seed, scene.runs, &mut sys)?),
+        None => None,
+    };
     let (mut elapsed, mut forces, mut geometry) = (Duration::ZERO, 0, 0);
     let (mut error, mut interrupted) = (None, false);
     while sys.step() < steps {
@@ -128,7 +133,12 @@ pub fn run(
             interrupted = true;
             break;
         }
-        let chunk = every.min(steps - sys.step());
+        // Up to the next sample (a multiple of `every`), the end, or the next frame.
+        let next_sample = (sys.step() / every + 1) * every;
+        let next_frame = trajectory
+            .as_ref()
+            .map_or(u64::MAX, |t| t.next_frame(sys.step()));
+        let chunk = next_sample.min(steps).min(next_frame) - sys.step();
         let (before, from) = (sys.counters(), sys.step());
         let start = Instant::now();
         let outcome = sys.advance(scheme, chunk);
@@ -141,7 +151,11 @@ pub fn run(
             error = Some(blow_up.to_string());
             break;
         }
-        if thermo_avg.wants(sys.step()) {
+        if let Some(t) = &mut trajectory {
+            t.record_if_due(&mut sys)?;
+        }
+        let sampled = sys.step() % every == 0 || sys.step() == steps;
+        if sampled && thermo_avg.wants(sys.step()) {
             thermo_avg.record(&thermo(&mut sys));
             rdf.iter_mut().for_each(|r| r.record(&sys));
             vacf.iter_mut().for_each(|v| v.record(&sys));

@@ -9,6 +9,7 @@
 //! them.
 
 use super::flows::{ProfileSpec, WallSpec};
+use super::trajectory::{initial_state, InitSpec, TrajectorySpec};
 use dpd_core::init::{cubic_box, freeze_outside, maxwell_momenta, uniform_positions};
 use dpd_core::system::DEFAULT_SKIN;
 use dpd_core::{ParamError, Params, PeriodicBox, System, Vec3};
@@ -67,6 +68,9 @@ pub struct Scene {
     pub body_force: Option<f64>,
     pub walls: Option<WallSpec>,
     pub profile: Option<ProfileSpec>,
+    pub trajectory: Option<TrajectorySpec>,
+    /// Start from a frame of a GSD file, `"FILE.gsd"` (its last frame) or `"FILE.gsd:K"`.
+    pub init: Option<String>,
 }
 
 /// Radial distribution function accumulated over the averaging window.
@@ -155,6 +159,8 @@ impl Default for Scene {
             body_force: None,
             walls: None,
             profile: None,
+            trajectory: None,
+            init: None,
         }
     }
 }
@@ -218,37 +224,37 @@ pub struct Overrides {
     /// Registry name or scheme string
     #[arg(long)]
     pub scheme: Option<String>,
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub gamma: Option<f64>,
     /// Time step
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub dt: Option<f64>,
     /// Run length in time units
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub time: Option<f64>,
     /// Number of particles
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub n: Option<usize>,
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub density: Option<f64>,
     /// Conservative repulsion
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub a: Option<f64>,
     /// Target temperature k_B T
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub kbt: Option<f64>,
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub mass: Option<f64>,
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub weight_exponent: Option<f64>,
     /// Seed of the first run
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub seed: Option<u64>,
     /// Independent runs (seeds)
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub runs: Option<u64>,
     /// Worker threads (0: one per core)
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub threads: Option<usize>,
     /// Lees-Edwards shear rate kappa (measures the shear viscosity)
     #[arg(long, value_name = "KAPPA", allow_hyphen_values = true)]
@@ -263,13 +269,13 @@ pub struct SweepOverrides {
     #[arg(long, value_delimiter = ',')]
     pub schemes: Option<Vec<String>>,
     /// Smallest time step of the grid
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub dt_min: Option<f64>,
     /// Largest time step of the grid
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub dt_max: Option<f64>,
     /// Ratio of neighbouring time steps (default 1.15)
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub dt_factor: Option<f64>,
     /// Scheme whose efficiency is 1
     #[arg(long)]
@@ -337,6 +343,14 @@ impl Scene {
         }
         set!(schemes, dt_min, dt_max, dt_factor, reference, observable);
         self.sweep = Some(w);
+        if let Some(t) = &self.trajectory {
+            return Err(ParamError::new(
+                "trajectory.file",
+                t.file.display(),
+                "trajectories are written by `dpd run` only: remove [trajectory] for a sweep",
+            )
+            .into());
+        }
         self.validate()?;
         Ok(())
     }
@@ -365,14 +379,46 @@ impl Scene {
             "must be in (0, 1]",
         )?;
         require("runs", self.runs, self.runs >= 1, "must be at least 1")?;
-        let edge = self.lengths()?.into_iter().fold(f64::INFINITY, f64::min);
+        check_steps(self.time, "dt", self.dt)?;
+        let max_threads = MAX_THREADS_PER_CORE * cores();
+        require(
+            "threads",
+            self.threads,
+            self.threads <= max_threads,
+            &format!(
+                "must be at most {max_threads} ({MAX_THREADS_PER_CORE} per core of this \
+                 machine; 0 means one per core)"
+            ),
+        )?;
         let min_edge = 2.0 * (1.0 + DEFAULT_SKIN);
+        let max_density = MAX_PARTICLES as f64 / min_edge.powi(3);
+        require(
+            "density",
+            self.density,
+            self.density <= max_density,
+            &format!(
+                "must be at most {} (the smallest box, of edge {min_edge}, then holds \
+                 {MAX_PARTICLES} particles)",
+                max_density.floor()
+            ),
+        )?;
+        require(
+            "n",
+            self.n,
+            self.n <= MAX_PARTICLES,
+            &format!("must be at most {MAX_PARTICLES}"),
+        )?;
+        let edge = self.lengths()?.into_iter().fold(f64::INFINITY, f64::min);
         if self.box_lengths.is_some() {
             require(
                 "box",
                 format!("{:?}", self.box_lengths),
-                edge >= min_edge && self.particles() >= 2,
-                &format!("every edge must be >= {min_edge} and hold at least 2 particles"),
+                edge >= min_edge && self.particles() >= 2 && self.particles() <= MAX_PARTICLES,
+                &format!(
+                    "every edge must be >= {min_edge} and the box hold 2 to {MAX_PARTICLES} \
+                     particles at density {}",
+                    self.density
+                ),
             )?;
         } else {
             require(
@@ -405,6 +451,12 @@ impl Scene {
                 "must be 0 (x), 1 (y) or 2 (z)",
             )?;
         }
+        if let Some(t) = &self.trajectory {
+            t.validate()?;
+        }
+        if let Some(init) = &self.init {
+            InitSpec::parse(init)?;
+        }
         if let Some(r) = &self.rdf {
             let half = 0.5 * edge;
             require(
@@ -426,6 +478,9 @@ impl Scene {
         }
         if let Some(w) = &self.sweep {
             w.validate()?;
+            check_steps(self.time, "sweep.dt_min", w.dt_min)?;
+            check_steps(self.time, "sweep.dt_max", w.dt_max)?;
+            check_steps(self.time, "sweep.baseline_dt", w.baseline_dt())?;
             require(
                 "sweep.observable",
                 w.observable.name(),
@@ -444,7 +499,8 @@ impl Scene {
         Ok(())
     }
 
-    /// Steps of a run at `dt` (at least 1).
+    /// Steps of a run at `dt`: round(time / dt), which [`Scene::validate`] keeps between 1
+    /// and [`MAX_STEPS`] (at least 1 here too).
     pub fn steps(&self, dt: f64) -> u64 {
         ((self.time / dt).round() as u64).max(1)
     }
@@ -485,16 +541,28 @@ impl Scene {
     }
 
     /// The initial state of run `seed` at time step `dt`: uniform positions, Maxwell momenta
-    /// with the total momentum removed; with `[walls]`, the particles outside the channel are
-    /// frozen (and their momenta zeroed).
+    /// with the total momentum removed (with `init`, the frame's positions, velocities, masses
+    /// and types instead); with `[walls]`, the particles outside the channel are frozen (and
+    /// their momenta zeroed).
     pub fn system(&self, dt: f64, seed: u64) -> Result<System, ParamError> {
         let bx = self.periodic_box()?;
         let n = self.particles();
-        let masses = vec![self.mass; n];
-        let q = uniform_positions(&bx, n, seed);
-        let mut p = maxwell_momenta(&masses, self.kbt, seed);
-        let mut builder = System::builder(self.params()?, bx, q.clone())
+        let params = self.params()?;
+        let (q, mut p, masses, kinds) = match &self.init {
+            Some(init) => {
+                let frame = InitSpec::parse(init)?.read(n, bx.lengths().into())?;
+                initial_state(&frame, self.mass, params.types())?
+            }
+            None => {
+                let masses = vec![self.mass; n];
+                let q = uniform_positions(&bx, n, seed);
+                let p = maxwell_momenta(&masses, self.kbt, seed);
+                (q, p, masses, vec![0; n])
+            }
+        };
+        let mut builder = System::builder(params, bx, q.clone())
             .masses(masses)
+            .kinds(kinds)
             .dt(dt)
             .seed(seed);
         if let Some(w) = &self.walls {
@@ -580,6 +648,43 @@ impl SweepSpec {
     pub fn baseline_dt(&self) -> f64 {
         self.baseline_dt.unwrap_or(self.dt_min)
     }
+}
+
+/// Most steps of one run: a longer run is refused rather than left to run for days.
+pub const MAX_STEPS: u64 = 1_000_000_000;
+/// Most worker threads per core.
+pub const MAX_THREADS_PER_CORE: usize = 8;
+/// Most particles of a scene.
+pub const MAX_PARTICLES: usize = 100_000_000;
+
+/// Cores of this machine (1 if unknown).
+fn cores() -> usize {
+    std::thread::available_parallelism().map_or(1, |n| n.get())
+}
+
+/// Checks that a run of `time` at step `key` = `dt` (already checked positive) has between 1
+/// and [`MAX_STEPS`] steps.
+fn check_steps(time: f64, key: &str, dt: f64) -> Result<(), ParamError> {
+    let steps = (time / dt).round();
+    require(
+        key,
+        dt,
+        steps >= 1.0,
+        &format!(
+            "gives round(time / {key}) = 0 steps with time = {time}: must be at most twice \
+             time, {}",
+            2.0 * time
+        ),
+    )?;
+    require(
+        key,
+        dt,
+        steps <= MAX_STEPS as f64,
+        &format!(
+            "gives {steps:e} steps with time = {time}, more than the {MAX_STEPS:e} steps a run \
+             may take: raise {key} or shorten time"
+        ),
+    )
 }
 
 fn require(key: &str, value: impl ToString, ok: bool, allowed: &str) -> Result<(), ParamError> {

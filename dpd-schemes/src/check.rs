@@ -36,7 +36,7 @@ pub struct Check {
 
 /// A text that is neither a registered scheme nor a valid scheme string.
 #[derive(Clone, Debug, PartialEq, Error)]
-#[error("invalid scheme = {scheme:?}: {reason}")]
+#[error("invalid scheme: {reason}")]
 pub struct CheckError {
     /// The text as given.
     pub scheme: String,
@@ -104,10 +104,7 @@ pub fn check(name_or_source: &str) -> Result<Check, CheckError> {
         Ok(p) => Ok(Check::of_program(source.to_string(), &p)),
         Err(diagnostics) => Err(CheckError {
             scheme: name_or_source.to_string(),
-            reason: ResolveError {
-                unknown,
-                diagnostics,
-            },
+            reason: ResolveError::new(unknown, source, diagnostics),
         }),
     }
 }
@@ -138,8 +135,9 @@ mod tests {
     fn neither_name_nor_string_is_an_error_naming_the_text() {
         let e = check("ABQ").unwrap_err().to_string();
         assert!(
-            e.starts_with("invalid scheme = \"ABQ\": unknown scheme"),
+            e.starts_with("invalid scheme: not a valid scheme string: unknown sub-flow 'Q'"),
             "{e}"
         );
+        assert_eq!(e.matches("ABQ").count(), 1, "{e}");
     }
 }

@@ -509,20 +509,70 @@ fn edit_distance(a: &str, b: &str) -> usize {
 #[derive(Clone, Debug, PartialEq, Error)]
 pub struct ResolveError {
     pub unknown: UnknownScheme,
+    /// The text compiled as a scheme string (trimmed); the diagnostics' spans point into it.
+    pub text: String,
     /// Why the text does not compile in the scheme language.
     pub diagnostics: Vec<Diagnostic>,
 }
 
+/// Diagnostics shown in full by [`ResolveError`]'s message; the rest are counted.
+const SHOWN_DIAGNOSTICS: usize = 3;
+
+impl ResolveError {
+    /// The error of `source` (trimmed), given the name lookup that failed and the diagnostics
+    /// of compiling it.
+    pub fn new(unknown: UnknownScheme, source: &str, diagnostics: Vec<Diagnostic>) -> Self {
+        ResolveError {
+            unknown,
+            text: source.to_string(),
+            diagnostics,
+        }
+    }
+
+    /// Whether the text reads like a registry name rather than a scheme string: at most 40
+    /// letters, digits, `-` or `_`, with a lowercase letter, `-` or `_` (the letters of scheme
+    /// strings are uppercase; a registry name written in uppercase was already found).
+    pub fn looks_like_a_name(&self) -> bool {
+        let name = self.unknown.name.trim();
+        name.len() <= 40
+            && name
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_')
+            && name
+                .chars()
+                .any(|c| c.is_ascii_lowercase() || c == '-' || c == '_')
+    }
+}
+
 impl fmt::Display for ResolveError {
+    /// The language errors first, each with the line of the scheme it is about, then a
+    /// registry suggestion when the text looks like a name.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let why: Vec<String> = self.diagnostics.iter().map(|d| d.to_string()).collect();
-        write!(
-            f,
-            "{} (`dpd schemes` lists them), and '{}' is not a valid scheme string either: {}",
-            self.unknown,
-            self.unknown.name,
-            why.join("; ")
-        )
+        f.write_str("not a valid scheme string: ")?;
+        for (i, d) in self.diagnostics.iter().take(SHOWN_DIAGNOSTICS).enumerate() {
+            if i > 0 {
+                f.write_str("\n")?;
+            }
+            f.write_str(&d.render(&self.text))?;
+        }
+        let more = self.diagnostics.len().saturating_sub(SHOWN_DIAGNOSTICS);
+        if more > 0 {
+            write!(f, "\n({more} more errors)")?;
+        }
+        if self.looks_like_a_name() {
+            let u = &self.unknown;
+            write!(
+                f,
+                "\nnot a registered scheme name either: '{}'",
+                u.name.trim()
+            )?;
+            if u.close_matches.is_empty() {
+                f.write_str(" (`dpd schemes` lists them)")?;
+            } else {
+                write!(f, "; did you mean {}?", u.close_matches.join(", "))?;
+            }
+        }
+        Ok(())
     }
 }
 
@@ -536,10 +586,7 @@ pub fn resolve(name_or_source: &str) -> Result<Box<dyn Scheme + Send + Sync>, Re
     let source = name_or_source.trim();
     DynScheme::compile(source, source, &Default::default())
         .map(|s| Box::new(s) as Box<dyn Scheme + Send + Sync>)
-        .map_err(|diagnostics| ResolveError {
-            unknown,
-            diagnostics,
-        })
+        .map_err(|diagnostics| ResolveError::new(unknown, source, diagnostics))
 }
 
 #[cfg(test)]
@@ -554,6 +601,35 @@ mod tests {
         assert_eq!(edit_distance("baoab", "aboba"), 4);
         assert_eq!(edit_distance("kitten", "sitting"), 3);
         assert_eq!(edit_distance("", "sas"), 3);
+    }
+
+    fn resolve_error(text: &str) -> String {
+        match resolve(text) {
+            Ok(_) => panic!("{text:?} resolved"),
+            Err(e) => e.to_string(),
+        }
+    }
+
+    #[test]
+    fn a_bad_string_gets_its_language_error_with_a_caret_once() {
+        let e = resolve_error("ABQ");
+        assert!(e.starts_with("not a valid scheme string: unknown"), "{e}");
+        assert!(e.contains("\n  ABQ\n    ^"), "{e}");
+        assert!(!e.contains("registered"), "{e}");
+        let long = resolve_error(&format!("{}Q", "A".repeat(100_000)));
+        assert!(long.len() < 400, "{} bytes", long.len());
+    }
+
+    #[test]
+    fn a_name_like_text_also_gets_a_registry_suggestion() {
+        let e = resolve_error("abobaa");
+        assert!(e.starts_with("not a valid scheme string: "), "{e}");
+        assert!(
+            e.contains("\nnot a registered scheme name either: 'abobaa'; did you mean aboba"),
+            "{e}"
+        );
+        let e = resolve_error("zzz-yyy");
+        assert!(e.ends_with("(`dpd schemes` lists them)"), "{e}");
     }
 
     #[test]

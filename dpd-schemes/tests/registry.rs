@@ -62,7 +62,10 @@ fn resolve_falls_back_to_the_scheme_language() {
         panic!("abobba is neither a name nor a scheme string")
     };
     let text = err.to_string();
-    assert!(text.contains("unknown scheme 'abobba'"), "{text}");
+    assert!(
+        text.contains("not a registered scheme name either: 'abobba'; did you mean aboba"),
+        "{text}"
+    );
     assert!(text.contains("not a valid scheme string"), "{text}");
     assert!(!err.diagnostics.is_empty());
 }

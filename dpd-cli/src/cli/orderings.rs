@@ -17,7 +17,7 @@ const MAX_STRINGS: u64 = 1_000_000;
 #[derive(Debug, clap::Args)]
 pub struct Args {
     /// Longest string
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     max_len: u32,
     /// Letters to combine, e.g. ABO or ABOb
     #[arg(long, default_value = "ABO")]

@@ -1,12 +1,14 @@
 //! `dpd run`: one scene with one scheme; prints the observables averaged over the runs.
 
 use super::{bad_input, print_json, progress, INTERRUPTED};
+use dpd::error::shown;
 use dpd::schemes::registry::resolve;
 use dpd::Scheme;
 use dpd_measure::flows::ProfileSpec;
 use dpd_measure::plot::profile_plot;
 use dpd_measure::runner::{lock, run_parallel, Control, Job, RunResult};
-use dpd_measure::{report, Aggregate, Overrides, Scene};
+use dpd_measure::trajectory::TrajectorySpec;
+use dpd_measure::{report, Aggregate, Overrides, Scene, SceneError};
 use serde::Serialize;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -23,6 +25,15 @@ pub struct Args {
     /// With `[profile]`: write each run's profile as `profile-seed<k>.csv` and `.svg` here
     #[arg(long, value_name = "DIR")]
     profile_dir: Option<PathBuf>,
+    /// Write a trajectory here (.gsd, .xyz, .lammpstrj/.dump); replaces the scene's [trajectory]
+    #[arg(long, value_name = "FILE", requires = "every")]
+    trajectory: Option<PathBuf>,
+    /// Time between trajectory frames (with --trajectory)
+    #[arg(long, value_name = "T", requires = "trajectory")]
+    every: Option<f64>,
+    /// Start from a frame of a GSD file: FILE.gsd (its last frame) or FILE.gsd:K
+    #[arg(long, value_name = "FILE.gsd[:K]")]
+    init: Option<String>,
 }
 
 /// What `dpd run --json` prints: the combined observables of the runs, their details and the
@@ -41,18 +52,19 @@ struct RunReport<'a> {
 }
 
 pub fn main(args: Args) -> ExitCode {
-    let scene = match Scene::resolve(&args.scene) {
+    let scene = match Scene::resolve(&args.scene).and_then(|s| with_files(s, &args)) {
         Ok(scene) => scene,
         Err(e) => return bad_input(e),
     };
     let scheme = match resolve(&scene.scheme) {
         Ok(scheme) => scheme,
-        Err(e) => return bad_input(format!("invalid scheme = {:?}: {e}", scene.scheme)),
+        Err(e) => return bad_input(format!("invalid scheme: {e}")),
     };
     let program = scheme.program().map(|p| p.to_string());
+    let name = shown(&scene.scheme);
     let what = match &program {
-        Some(p) => format!("scheme {} = {p}", scene.scheme),
-        None => format!("scheme {}", scene.scheme),
+        Some(p) => format!("scheme {name} = {p}"),
+        None => format!("scheme {name}"),
     };
     eprint!("{}", header(&scene, &what, &[scene.dt]));
     let jobs: Vec<Job> = (0..scene.runs)
@@ -64,7 +76,7 @@ pub fn main(args: Args) -> ExitCode {
         .collect();
     let bar = progress::bar(
         scene.steps(scene.dt) * scene.runs,
-        format!("{} dt = {}", scene.scheme, scene.dt),
+        format!("{name} dt = {}", shown(&scene.dt.to_string())),
     );
     let results = Mutex::new(Vec::new());
     let control = Control {
@@ -109,13 +121,26 @@ pub fn main(args: Args) -> ExitCode {
     }
 }
 
+/// `scene` with `--trajectory`/`--every` and `--init` applied, validated.
+fn with_files(mut scene: Scene, args: &Args) -> Result<Scene, SceneError> {
+    if let (Some(file), Some(every)) = (&args.trajectory, args.every) {
+        scene.trajectory = Some(TrajectorySpec::new(file.clone(), every));
+    }
+    if let Some(init) = &args.init {
+        scene.init = Some(init.clone());
+    }
+    scene.validate()?;
+    Ok(scene)
+}
+
 /// Every effective parameter as TOML, after a comment line on `what` and on the steps and
 /// sampling at each of `dts`.
 pub fn header(scene: &Scene, what: &str, dts: &[f64]) -> String {
     let mut out = format!("# dpd: {what}\n");
     for &dt in dts {
         out += &format!(
-            "# at dt = {dt:.4}: {} steps, a sample every {} steps in the last {} %\n",
+            "# at dt = {}: {} steps, a sample every {} steps in the last {} %\n",
+            shown(&format!("{dt:.4}")),
             scene.steps(dt),
             scene.sample_every(dt),
             100.0 * scene.average_fraction

@@ -20,10 +20,10 @@ pub struct Args {
     #[arg(long, value_delimiter = ',')]
     schemes: Vec<String>,
     /// Steps per run (default: 400 full, 40 reduced)
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     steps: Option<u64>,
     /// Particles in the box (density 3; at least 53 for the box edge 2 (r_c + skin))
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     particles: Option<usize>,
     /// Frictions, comma-separated (replaces the matrix's list)
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
@@ -35,7 +35,7 @@ pub struct Args {
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     dt: Vec<f64>,
     /// Random seed of the start and of the noise
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     seed: Option<u64>,
 }
 

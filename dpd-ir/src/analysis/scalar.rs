@@ -14,12 +14,15 @@ use num_traits::{Signed, ToPrimitive, Zero};
 ///
 /// Callers pass that bound as `scale` to [`Scalar::negligible`]: every word coefficient is a
 /// sum of products of stage coefficients, bounded by `max(1, C)^n` for a word of degree `n`
-/// (`C` the sum of the absolute stage coefficients). Rounding in a few thousand operations
-/// leaves a relative error near 1e-14; published coefficients quoted to 15 digits (Yoshida's
-/// sixth-order solution) satisfy their order conditions to about the same. Genuine order
-/// defects are many orders of magnitude larger, so 1e-10 separates the two with headroom on
-/// both sides.
-pub const FLOAT_TOLERANCE: f64 = 1e-10;
+/// (`C` the sum of the absolute stage coefficients). The tolerance is tied to the precision
+/// the coefficients are given to: an inexact coefficient is an `f64` (relative error 1.1e-16)
+/// or a literal typed to at least 13 significant digits (`lang::APPROXIMATE_DIGITS`, relative
+/// error at most 5e-13), and rounding in a few thousand operations adds about 1e-14. So a
+/// defect below 1e-12 of the bound cannot be told from the precision of the input, and one
+/// above it is real: `x0 + 5e-9` in the triple jump leaves a third-order defect near 4e-10 of
+/// the bound (order 2), Yoshida's sixth-order solution typed to 15 digits one near 5e-18
+/// (order 6).
+pub const FLOAT_TOLERANCE: f64 = 1e-12;
 
 /// A coefficient field: what the truncated free algebra needs of its coefficients.
 pub trait Scalar: Clone + fmt::Display {

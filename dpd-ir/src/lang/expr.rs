@@ -2,6 +2,7 @@
 
 use super::ast::{BinOp, Expr};
 use super::diagnostic::Diagnostic;
+use super::parse::{not_a_finite_number, not_finite};
 use super::value::Value;
 use std::collections::BTreeMap;
 
@@ -36,7 +37,10 @@ pub fn eval(e: &Expr, scope: &Scope) -> Result<Value, Diagnostic> {
     let at = |msg: String| Diagnostic::new(msg, e.span());
     match e {
         Expr::Number(literal, _) => Value::parse(literal).map_err(at),
-        Expr::Name(name, _) => scope.lookup(name).cloned().ok_or_else(|| {
+        Expr::Name(name, span) => scope.lookup(name).cloned().ok_or_else(|| {
+            if let Some(word) = not_finite(name, 0).filter(|w| w.len() == name.len()) {
+                return not_a_finite_number(word, span.start);
+            }
             at(format!(
                 "undefined constant '{name}'; known here: {}",
                 scope.known_names()

@@ -5,6 +5,8 @@ use std::ops::Range;
 
 /// Longest number literal accepted, in bytes (keeps exact arithmetic cheap).
 const MAX_NUMBER_LEN: usize = 400;
+/// Longest name accepted, in bytes (keeps messages that quote a name short).
+const MAX_NAME_LEN: usize = 64;
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum Tok {
@@ -41,6 +43,18 @@ pub fn lex(src: &str) -> (Vec<Token>, Vec<Diagnostic>) {
                 .unwrap_or(src.len() - from)
         };
         let (tok, end) = if c.is_whitespace() {
+            continue;
+        } else if (c.is_ascii_alphabetic() || c == '_')
+            && word_end(start + 1) - start > MAX_NAME_LEN
+        {
+            let end = word_end(start + 1);
+            errors.push(Diagnostic::new(
+                format!("name longer than {MAX_NAME_LEN} characters"),
+                start..end,
+            ));
+            while chars.peek().is_some_and(|&(i, _)| i < end) {
+                chars.next();
+            }
             continue;
         } else if c.is_ascii_uppercase() {
             let end = word_end(start + 1);
@@ -131,6 +145,22 @@ mod tests {
         assert_eq!(
             toks("2e"),
             vec![Tok::Number("2".into()), Tok::Lower("e".into())]
+        );
+    }
+
+    #[test]
+    fn long_names_are_refused_without_a_token() {
+        let (tokens, errors) = lex(&format!("A{} B", "b".repeat(100)));
+        assert_eq!(
+            tokens,
+            vec![Token {
+                tok: Tok::Upper("B".into()),
+                span: 102..103
+            }]
+        );
+        assert_eq!(
+            errors,
+            vec![Diagnostic::new("name longer than 64 characters", 0..101)]
         );
     }
 

@@ -35,12 +35,25 @@
 //! (right associative, binds tighter than unary minus: `-2^2 = -4`, `2^-1 = 1/2`),
 //! parentheses, `sqrt(..)`, `cbrt(..)` and constants. A number or a `)` directly followed by a
 //! name or `(` multiplies it, like `*`: `1-2x1` = `1 - 2*x1`, `(2/9)(1 + sqrt(38/11))`. Values stay exact rationals where they
-//! are rational (`sqrt(9/4)` = `3/2`, `2^10`, `0.1` = `1/10`); otherwise they are `f64`
+//! are rational (`sqrt(9/4)` = `3/2`, `2^10`, `0.1` = `1/10`, `5e-9`); otherwise they are `f64`
 //! computed by a fixed sequence of IEEE operations, without any platform `libm` function, so
 //! they are identical at compile time and run time. Exponents must be rational with a
 //! denominator of at most 32; exact values are limited to 4096-bit numerators and
 //! denominators, and an expression to 200 levels of nesting (each parenthesis, sign, power and
 //! operator of a chain counts one level).
+//!
+//! ## Typed coefficients
+//!
+//! A number literal with 13 or more significant digits (leading and trailing zeros not
+//! counted) is a typed approximation of a real number, as when coefficients are copied from a
+//! paper: it is read as the nearest `f64` and makes every value computed from it inexact, like
+//! `sqrt(2)`. The order analysis then works in `f64` and treats a defect below 1e-12 of its
+//! bound as zero (see `analysis::FLOAT_TOLERANCE`): Yoshida's sixth-order weights typed to 21
+//! or 15 digits give order 6, while `x0 + 5e-9` in a triple jump, a perturbation far above
+//! that precision, gives order 2. Shorter literals are exact, so `0.1`, `5e-9` and
+//! `0.123456789` mean exactly what they say. A printed [`Program`] writes exact values as
+//! fractions and inexact ones with 17 significant digits, so it compiles back to the same
+//! coefficients and the same analysis.
 //!
 //! # Sweep order
 //!
@@ -145,7 +158,7 @@ mod parse;
 mod validate;
 mod value;
 
-pub use diagnostic::Diagnostic;
+pub use diagnostic::{escape, Diagnostic};
 pub use letters::{Letter, LETTERS};
 
 use crate::program::Program;

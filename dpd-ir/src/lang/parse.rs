@@ -480,13 +480,36 @@ impl Parser<'_> {
                 self.expect(')', "')'")?;
                 Ok(e)
             }
-            Some(Tok::Upper(name)) => Err(Diagnostic::new(
-                format!("'{name}' is a sub-flow, not a number; constants are lowercase"),
-                span,
-            )),
+            Some(Tok::Upper(name)) => Err(match not_finite(self.src, span.start) {
+                Some(word) => not_a_finite_number(word, span.start),
+                None => Diagnostic::new(
+                    format!("'{name}' is a sub-flow, not a number; constants are lowercase"),
+                    span,
+                ),
+            }),
             _ => Err(self.expected("a number, a constant or '('")),
         }
     }
+}
+
+/// The spelling of NaN or infinity (`NaN`, `Inf`, `infinity`, any case) starting at byte `at`.
+pub fn not_finite(src: &str, at: usize) -> Option<&str> {
+    let rest = src.get(at..)?;
+    let len = rest
+        .find(|c: char| !c.is_ascii_alphabetic())
+        .unwrap_or(rest.len());
+    let word = &rest[..len];
+    ["nan", "inf", "infinity"]
+        .contains(&word.to_ascii_lowercase().as_str())
+        .then_some(word)
+}
+
+/// The error for a NaN or infinite coefficient spelled `word` at byte `at`.
+pub fn not_a_finite_number(word: &str, at: usize) -> Diagnostic {
+    Diagnostic::new(
+        format!("'{word}' is not a finite number; coefficients must be finite"),
+        at..at + word.len(),
+    )
 }
 
 fn binary(op: BinOp, lhs: Expr, rhs: Expr) -> Expr {

@@ -11,6 +11,12 @@ use num_bigint::{BigInt, Sign};
 use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 
+/// Significant digits from which a number literal is a typed approximation of a real number
+/// (read as the nearest `f64`) rather than an exact decimal: 13, so that coefficients copied
+/// from a paper to 13-21 digits mean the number they approximate, while `0.1`, `5e-9` or
+/// `0.123456789` mean exactly what they say.
+pub const APPROXIMATE_DIGITS: usize = 13;
+
 /// Largest numerator or denominator of an exact value, in bits.
 pub const MAX_BITS: u64 = 4096;
 /// Largest root index `q` of a power `x^(p/q)`.
@@ -31,7 +37,9 @@ impl Value {
         Value::Exact(BigRational::from_integer(n.into()))
     }
 
-    /// Parses a number literal (`12`, `0.25`, `1.5e-3`) exactly.
+    /// Parses a number literal (`12`, `0.25`, `1.5e-3`): exactly when it has fewer than
+    /// [`APPROXIMATE_DIGITS`] significant digits, else as the nearest `f64` (a typed
+    /// approximation of a real number, see the module docs of `lang`).
     pub fn parse(literal: &str) -> VResult {
         let (mantissa, exponent) = match literal.find(['e', 'E']) {
             Some(i) => (&literal[..i], &literal[i + 1..]),
@@ -54,11 +62,16 @@ impl Value {
         let scale = exponent - frac.len() as i64;
         let ten = BigInt::from(10);
         let p = ten.pow(scale.unsigned_abs() as u32);
+        let significant = digits.trim_matches('0').len();
         let r = if scale >= 0 {
             BigRational::from_integer(n * p)
         } else {
             BigRational::new(n, p)
         };
+        if significant >= APPROXIMATE_DIGITS {
+            return float(r.to_f64().unwrap_or(f64::NAN))
+                .map_err(|_| format!("{literal} is too large for an f64"));
+        }
         exact(r)
     }
 
@@ -207,10 +220,47 @@ impl Value {
 impl std::fmt::Display for Value {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            Value::Exact(r) => write!(f, "{r}"),
+            Value::Exact(r) => f.write_str(&compact(r)),
             Value::Float(x) => write!(f, "{x:?}"),
         }
     }
+}
+
+/// Longest fraction, in characters, that messages print in full.
+const LONGEST_SHOWN: usize = 40;
+
+/// `r` as a fraction (`-3/8`) when that is short, else in scientific notation with 17
+/// significant digits, after `~` when rounded (`1e309`, `~3.3333333333333333e-401`).
+pub fn compact(r: &BigRational) -> String {
+    let full = r.to_string();
+    if full.len() <= LONGEST_SHOWN || r.is_zero() {
+        return full;
+    }
+    let (n, d) = (r.numer().magnitude(), r.denom().magnitude());
+    // Scale by 10^k so that the integer quotient has at least 17 digits.
+    let digits = |x: &num_bigint::BigUint| x.to_string().len() as i64;
+    let k = 17 - (digits(n) - digits(d));
+    let ten = num_bigint::BigUint::from(10u32);
+    let (num, den) = if k >= 0 {
+        (n * ten.pow(k as u32), d.clone())
+    } else {
+        (n.clone(), d * ten.pow((-k) as u32))
+    };
+    let q = &num / &den;
+    let q_digits = q.to_string();
+    let exponent = q_digits.len() as i64 - 1 - k;
+    let rounded = !(&num % &den).is_zero()
+        || q_digits
+            .get(17..)
+            .is_some_and(|t| !t.trim_matches('0').is_empty());
+    let mantissa = q_digits[..17.min(q_digits.len())].trim_end_matches('0');
+    let mantissa = match mantissa.split_at(1) {
+        (lead, "") => lead.to_string(),
+        (lead, rest) => format!("{lead}.{rest}"),
+    };
+    let tilde = if rounded { "~" } else { "" };
+    let sign = if r.is_negative() { "-" } else { "" };
+    format!("{tilde}{sign}{mantissa}e{exponent}")
 }
 
 /// Checks the size of an exact result.
@@ -261,7 +311,7 @@ fn root(r: &BigRational, q: u32) -> VResult {
     }
     if r.is_negative() {
         if q & 1 == 0 {
-            return Err(format!("even root of the negative number {r}"));
+            return Err(format!("even root of the negative number {}", compact(r)));
         }
         return root(&-r, q).map(|v| v.neg());
     }
@@ -302,6 +352,44 @@ mod tests {
         assert_eq!(v("1.5e-3").to_f64(), 0.0015);
         assert_eq!(v("2e3"), Value::int(2000));
         assert!(Value::parse("1e99999").is_err());
+    }
+
+    #[test]
+    fn long_literals_are_approximations() {
+        assert_eq!(
+            v("0.123456789012"),
+            Value::Exact(BigRational::new(
+                123456789012i64.into(),
+                1000000000000i64.into()
+            ))
+        );
+        assert_eq!(v("0.1234567890123"), Value::Float(0.1234567890123));
+        assert_eq!(
+            v("-1.17767998417887100695"),
+            Value::Float(-1.177_679_984_178_871)
+        );
+        assert_eq!(
+            v("0.000000000000000000001"),
+            Value::Exact(BigRational::new(1.into(), BigInt::from(10).pow(21)))
+        );
+        assert_eq!(v("1234567890123e290"), Value::Float(1.234567890123e302));
+        assert!(Value::parse("1234567890123e300").is_err());
+    }
+
+    #[test]
+    fn huge_and_tiny_values_print_compactly() {
+        assert_eq!(v("1e309").to_string(), "1e309");
+        assert_eq!(v("-2.5e-320").to_string(), "-2.5e-320");
+        assert_eq!(
+            v("1e300").div(&v("3")).unwrap().to_string(),
+            "~3.3333333333333333e299"
+        );
+        assert_eq!(
+            v("123456789").div(&v("1000")).unwrap().to_string(),
+            "123456789/1000"
+        );
+        let e = v("1e309").to_coeff().unwrap_err();
+        assert_eq!(e, "coefficient 1e309 is too large for an f64");
     }
 
     #[test]
