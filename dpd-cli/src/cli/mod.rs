@@ -1,6 +1,7 @@
 //! Subcommands of the `dpd` program, one module each.
 
 mod check;
+mod export;
 mod orderings;
 mod progress;
 mod reproduce;
@@ -39,6 +40,8 @@ enum Command {
     Reproduce(reproduce::Args),
     /// Run every named scheme over a matrix of gamma, mass and dt: completed, blow-up, insane
     Stability(stability::Args),
+    /// Generate code that runs schemes in another engine (a LAMMPS plugin)
+    Export(export::Args),
 }
 
 /// Run the parsed command line; the exit code is non-zero for bad input.
@@ -52,6 +55,7 @@ pub fn main(cli: Cli) -> ExitCode {
         Some(Command::Schemes(args)) => schemes::main(args),
         Some(Command::Stability(args)) => stability::main(args),
         Some(Command::Reproduce(args)) => reproduce::main(args),
+        Some(Command::Export(args)) => export::main(args),
     }
 }
 
