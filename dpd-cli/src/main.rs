@@ -2,6 +2,7 @@
 //! gamma = 4.5 comparison of velocity Verlet, DPD-S1 and ABOBA.
 
 mod cli;
+mod export;
 
 use clap::Parser;
 

@@ -239,16 +239,28 @@ impl<'a> Full<'a> {
             )
         };
         let conservative = unsafe { self.a.of_pair(self.kind, i, j) }.force(pair.w);
-        let mut f = conservative - self.gamma * pair.wr * pair.wr * u;
-        if self.noise > 0.0 {
-            f += self.noise * pair.wr * z;
-        }
+        let f = full_pair_force(conservative, self.gamma, self.noise, pair.wr, u, z);
         let fe = f * pair.e;
         let (fi, fj) = two.split();
         *fi += fe;
         *fj -= fe;
         V::of(pair, self.rc, f - conservative)
     }
+}
+
+/// The full DPD pair force along `e_ij` ([`full`]): `conservative - gamma w_R^2 u + noise w_R z`
+/// for the conservative pair force `conservative`, random weight `wr`, relative normal
+/// velocity `u = e_ij . v_ij`, standard normal `z` and `noise = sigma / sqrt(dt)`; the noise
+/// term only when `noise > 0`. Public for engines that own their pair loop (the LAMMPS
+/// plugin's kernels, which pass `conservative = 0` and take the conservative forces from the
+/// engine).
+#[inline(always)]
+pub fn full_pair_force(conservative: f64, gamma: f64, noise: f64, wr: f64, u: f64, z: f64) -> f64 {
+    let mut f = conservative - gamma * wr * wr * u;
+    if noise > 0.0 {
+        f += noise * wr * z;
+    }
+    f
 }
 
 #[cfg(test)]

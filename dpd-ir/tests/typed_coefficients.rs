@@ -106,3 +106,28 @@ fn printed_programs_compile_back_to_the_same_analysis() {
         );
     }
 }
+
+/// 200 pairs with distinct prime denominators: exact arithmetic would carry thousands of bits
+/// per word coefficient (the issue measured 185 s), so the analysis works in `f64`.
+#[test]
+fn large_exact_values_are_analysed_in_f64() {
+    let primes: Vec<u64> = (3u64..)
+        .filter(|&k| (2..k).take_while(|d| d * d <= k).all(|d| k % d != 0))
+        .take(400)
+        .collect();
+    let pairs: Vec<String> = primes
+        .chunks(2)
+        .map(|p| format!("A(1/{}) B(1/{})", p[0], p[1]))
+        .collect();
+    let p = dpd_ir::lang::compile_with(
+        &pairs.join(" "),
+        &dpd_ir::Options {
+            allow_inconsistent: true,
+        },
+    )
+    .unwrap();
+    let a = p.analysis();
+    assert!(!a.exact && !a.consistent, "{a}");
+    let small = compile("A(1/3) B(1/5) A(1/7) B(1/11) A(1 - 1/3 - 1/7) B(1 - 1/5 - 1/11)").unwrap();
+    assert!(small.analysis().exact);
+}

@@ -7,6 +7,7 @@
 pub mod aggregate;
 pub mod critical;
 pub mod flows;
+pub mod paper;
 pub mod plot;
 pub mod report;
 pub mod runner;
@@ -17,5 +18,5 @@ pub mod trajectory;
 pub use aggregate::Aggregate;
 pub use critical::{critical_dt, Critical};
 pub use runner::{run, Control, RunResult};
-pub use scene::{Observable, Overrides, Scene, SceneError, SweepOverrides};
+pub use scene::{Observable, Overrides, Scene, SceneError, SchemeList, SweepOverrides};
 pub use sweep::{SchemeSummary, SweepResults};

@@ -180,14 +180,28 @@ fn rdf(results: &SweepResults, scheme: &str, path: &Path) -> Result<bool, Error>
             Some((r.dt, mean_rdf(&runs)?))
         })
         .collect();
-    let Some(r_max) = curves
+    if curves.is_empty() {
+        return Ok(false);
+    }
+    let labelled: Vec<(String, Vec<(f64, f64)>)> = curves
+        .into_iter()
+        .map(|(dt, g)| (format!("dt = {dt:.4}"), g))
+        .collect();
+    rdf_plot(&labelled, &format!("g(r), {scheme}"), path)?;
+    Ok(true)
+}
+
+/// Curves g(r), each with its legend label, coloured from blue (first) to red (last).
+pub fn rdf_plot(
+    curves: &[(String, Vec<(f64, f64)>)],
+    title: &str,
+    path: &Path,
+) -> Result<(), Error> {
+    let r_max = curves
         .iter()
         .flat_map(|c| c.1.last())
         .map(|p| p.0)
-        .reduce(f64::max)
-    else {
-        return Ok(false);
-    };
+        .fold(1.0f64, f64::max);
     let g_max = curves
         .iter()
         .flat_map(|c| c.1.iter().map(|p| p.1))
@@ -195,29 +209,29 @@ fn rdf(results: &SweepResults, scheme: &str, path: &Path) -> Result<bool, Error>
     let root = SVGBackend::new(path, (900, 600)).into_drawing_area();
     root.fill(&WHITE)?;
     let mut chart = ChartBuilder::on(&root)
-        .caption(format!("g(r), {scheme}"), ("sans-serif", 20))
+        .caption(title, ("sans-serif", 20))
         .margin(10)
         .x_label_area_size(40)
         .y_label_area_size(50)
         .build_cartesian_2d(0.0..r_max, 0.0..g_max * 1.05)?;
     chart.configure_mesh().x_desc("r").y_desc("g(r)").draw()?;
     let n = curves.len().max(2) as f64 - 1.0;
-    for (k, (dt, g)) in curves.iter().enumerate() {
-        // From blue (smallest dt) to red (largest).
+    for (k, (label, g)) in curves.iter().enumerate() {
+        // From blue (first) to red (last).
         let t = k as f64 / n;
         let colour = RGBColor((255.0 * t) as u8, 60, (255.0 * (1.0 - t)) as u8);
         chart
             .draw_series(LineSeries::new(g.iter().copied(), colour.stroke_width(2)))?
-            .label(format!("dt = {dt:.4}"))
+            .label(label.as_str())
             .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], colour));
     }
     legend(&mut chart, SeriesLabelPosition::LowerRight)?;
     root.present()?;
-    Ok(true)
+    Ok(())
 }
 
 /// Bin-wise mean of the runs' RDFs (those that have one with the same bins).
-fn mean_rdf(runs: &[&RunResult]) -> Option<Vec<(f64, f64)>> {
+pub fn mean_rdf(runs: &[&RunResult]) -> Option<Vec<(f64, f64)>> {
     let rdfs: Vec<&Vec<[f64; 2]>> = runs.iter().filter_map(|r| r.rdf.as_ref()).collect();
     let first = rdfs.first()?;
     let same: Vec<_> = rdfs.iter().filter(|g| g.len() == first.len()).collect();

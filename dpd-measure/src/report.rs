@@ -87,21 +87,30 @@ pub fn rows_table(rows: &[Aggregate]) -> String {
     align(header, body)
 }
 
-/// The rows as CSV (full precision, empty where nothing was measured).
+/// The rows as CSV (full precision, empty where nothing was measured), written by the `csv`
+/// crate: a scheme string with commas or quotes is quoted as RFC 4180 requires.
 pub fn rows_csv(rows: &[Aggregate]) -> String {
-    let mut out = String::from("scheme");
-    for (name, _, _) in ROW_COLUMNS {
-        out += &format!(",{name}");
-    }
-    out += ",stable_runs,runs\n";
+    let mut w = csv::Writer::from_writer(Vec::new());
+    let header = std::iter::once("scheme")
+        .chain(ROW_COLUMNS.iter().map(|(name, _, _)| *name))
+        .chain(["stable_runs", "runs"]);
+    // Writing to memory fails only on a bug; an empty CSV then shows it.
+    let mut write = |record: Vec<String>| w.write_record(record).is_ok();
+    let mut ok = write(header.map(String::from).collect());
     for r in rows {
-        out += &r.scheme;
-        for (_, f, _) in ROW_COLUMNS {
-            out += &format!(",{}", f(r).map_or_else(String::new, |x| x.to_string()));
-        }
-        out += &format!(",{},{}\n", r.stable_runs, r.runs);
+        let cells = std::iter::once(r.scheme.clone())
+            .chain(
+                ROW_COLUMNS
+                    .iter()
+                    .map(|(_, f, _)| f(r).map_or_else(String::new, |x| x.to_string())),
+            )
+            .chain([r.stable_runs.to_string(), r.runs.to_string()]);
+        ok &= write(cells.collect());
     }
-    out
+    match (ok, w.into_inner()) {
+        (true, Ok(bytes)) => String::from_utf8(bytes).unwrap_or_default(),
+        _ => String::new(),
+    }
 }
 
 fn critical(c: &Option<Critical>) -> String {
@@ -154,5 +163,29 @@ mod tests {
         assert_eq!(t, "a    bb\nxyz   1\n");
         assert_eq!(number(None, 2), "-");
         assert_eq!(number(Some(0.12345), 2), "0.12");
+    }
+
+    #[test]
+    fn csv_quotes_scheme_strings_with_commas() {
+        let row = Aggregate {
+            scheme: "prk(b = [1/2, 1/2], bh = [1, 0])".into(),
+            ..Aggregate::of(&[], 1.0)
+        };
+        let text = rows_csv(&[row]);
+        let mut lines = text.lines();
+        let header = lines.next().unwrap();
+        assert!(header.starts_with("scheme,"), "{header}");
+        let line = lines.next().unwrap();
+        assert!(
+            line.starts_with("\"prk(b = [1/2, 1/2], bh = [1, 0])\","),
+            "{line}"
+        );
+        let cells = csv::Reader::from_reader(text.as_bytes())
+            .records()
+            .next()
+            .unwrap()
+            .unwrap();
+        assert_eq!(&cells[0], "prk(b = [1/2, 1/2], bh = [1, 0])");
+        assert_eq!(cells.len(), header.split(',').count());
     }
 }

@@ -265,9 +265,10 @@ pub struct Overrides {
 /// name.
 #[derive(Clone, Debug, Default, clap::Args)]
 pub struct SweepOverrides {
-    /// Schemes to compare, comma-separated registry names or scheme strings
-    #[arg(long, value_delimiter = ',')]
-    pub schemes: Option<Vec<String>>,
+    /// Schemes to compare, comma-separated registry names or scheme strings (commas inside
+    /// brackets or parentheses, as in `prk(b = [...], ...)`, belong to the scheme)
+    #[arg(long, value_parser = scheme_list)]
+    pub schemes: Option<SchemeList>,
     /// Smallest time step of the grid
     #[arg(long, allow_negative_numbers = true)]
     pub dt_min: Option<f64>,
@@ -341,7 +342,10 @@ impl Scene {
         macro_rules! set {
             ($($key:ident),*) => { $(if let Some(v) = &o.$key { w.$key = v.clone(); })* };
         }
-        set!(schemes, dt_min, dt_max, dt_factor, reference, observable);
+        if let Some(list) = &o.schemes {
+            w.schemes = list.0.clone();
+        }
+        set!(dt_min, dt_max, dt_factor, reference, observable);
         self.sweep = Some(w);
         if let Some(t) = &self.trajectory {
             return Err(ParamError::new(
@@ -650,6 +654,32 @@ impl SweepSpec {
     }
 }
 
+/// The schemes of `--schemes`, split at the commas outside brackets and parentheses.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct SchemeList(pub Vec<String>);
+
+/// Splits `text` at top-level commas: `"vv, prk(b = [1/2, 1/2], bh = [1, 0])"` is two schemes.
+pub fn scheme_list(text: &str) -> Result<SchemeList, String> {
+    let mut schemes = Vec::new();
+    let (mut depth, mut start) = (0i64, 0);
+    for (i, c) in text.char_indices() {
+        match c {
+            '(' | '[' => depth += 1,
+            ')' | ']' => depth -= 1,
+            ',' if depth == 0 => {
+                schemes.push(text[start..i].trim().to_string());
+                start = i + 1;
+            }
+            _ => {}
+        }
+    }
+    schemes.push(text[start..].trim().to_string());
+    if schemes.iter().any(String::is_empty) {
+        return Err("empty scheme in the list (two commas in a row?)".into());
+    }
+    Ok(SchemeList(schemes))
+}
+
 /// Most steps of one run: a longer run is refused rather than left to run for days.
 pub const MAX_STEPS: u64 = 1_000_000_000;
 /// Most worker threads per core.
@@ -758,7 +788,7 @@ mod tests {
     fn sweep_overrides_replace_sweep_keys_and_are_validated() {
         let mut s = Scene::from_toml("[sweep]\ndt_max = 0.1\n", "t").unwrap();
         let o = SweepOverrides {
-            schemes: Some(vec!["aboba".into(), "vv".into()]),
+            schemes: Some(SchemeList(vec!["aboba".into(), "vv".into()])),
             dt_min: Some(0.05),
             ..Default::default()
         };
@@ -774,6 +804,23 @@ mod tests {
             e.starts_with("scene: invalid sweep.reference = baoab"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn scheme_lists_split_at_top_level_commas_only() {
+        let list = scheme_list(
+            "vv, prk(b = [7/24, 3/4, -1/24], bh = [2/3, -2/3, 1], kick = B) O,A(1/2) B A(1/2)",
+        )
+        .unwrap();
+        assert_eq!(
+            list.0,
+            vec![
+                "vv",
+                "prk(b = [7/24, 3/4, -1/24], bh = [2/3, -2/3, 1], kick = B) O",
+                "A(1/2) B A(1/2)"
+            ]
+        );
+        assert!(scheme_list("vv,,aboba").is_err());
     }
 
     #[test]
@@ -793,6 +840,10 @@ mod tests {
         let mut count = 0;
         for entry in std::fs::read_dir(dir).unwrap() {
             let path = entry.unwrap().path();
+            if path.is_dir() {
+                // scenes/papers/: paper items, checked by the paper module's tests.
+                continue;
+            }
             Scene::load(&path).unwrap().validate().unwrap();
             count += 1;
         }

@@ -128,6 +128,10 @@ pub fn load_finished(path: &Path, scene: &Scene) -> Result<Vec<RunResult>, Sweep
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
         Err(e) => return Err(error(e.to_string())),
     };
+    if text.trim().is_empty() {
+        // An empty file holds no results to protect.
+        return Ok(Vec::new());
+    }
     let stored: Stored = serde_json::from_str(&text).map_err(|e| error(e.to_string()))?;
     let remedy = "choose another results file or remove it";
     if let Some(key) = physics_difference(&stored.scene, scene) {
@@ -311,6 +315,16 @@ mod tests {
     use approx::assert_relative_eq;
     use std::sync::atomic::AtomicUsize;
     use std::sync::atomic::{AtomicBool, Ordering};
+
+    #[test]
+    fn an_empty_results_file_holds_no_results() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("empty.json");
+        std::fs::write(&path, "\n").unwrap();
+        assert!(load_finished(&path, &tiny()).unwrap().is_empty());
+        std::fs::write(&path, "{").unwrap();
+        assert!(load_finished(&path, &tiny()).is_err());
+    }
 
     fn tiny() -> Scene {
         Scene {

@@ -7,7 +7,9 @@ mod simulation;
 mod wait;
 
 use dpd_measure::sweep::{load_finished, run_sweep, Hooks};
-use dpd_measure::{Control, Observable, Overrides, Scene, SweepOverrides, SweepResults};
+use dpd_measure::{
+    Control, Observable, Overrides, Scene, SchemeList, SweepOverrides, SweepResults,
+};
 use dpd_schemes::check::check as check_scheme;
 use dpd_schemes::registry::{entries, Row};
 use pyo3::exceptions::{PyRuntimeError, PyRuntimeWarning, PyValueError};
@@ -104,7 +106,7 @@ fn sweep(
         .map_err(|e| invalid(format!("observable: {e}")))?;
     let mut scene = scene_of(scene)?;
     let keys = SweepOverrides {
-        schemes,
+        schemes: schemes.map(SchemeList),
         dt_min,
         dt_max,
         dt_factor,

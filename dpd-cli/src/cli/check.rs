@@ -33,7 +33,14 @@ pub fn main(args: Args) -> ExitCode {
         println!("analysed at {}", at.join(", "));
     }
     match &c.analysis {
-        Some(a) => print!("{a}"),
+        Some(a) => {
+            print!("{a}");
+            println!(
+                "note: the deterministic order is that of the pure Hamiltonian splitting, a lower \
+                 bound for DPD: with quadratic kinetic energy [B,[B,[B,A]]] = 0, so some schemes \
+                 (RKN methods) are an order higher"
+            );
+        }
         None => println!(
             "hand-written, documented claims: consistent: {}, deterministic order: {}, \
              invariant-measure order: not applicable (measure it)",

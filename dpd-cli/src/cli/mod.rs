@@ -2,8 +2,10 @@
 
 mod check;
 mod design;
+mod export;
 mod orderings;
 mod progress;
+mod reproduce;
 mod run;
 mod schemes;
 mod stability;
@@ -37,8 +39,12 @@ enum Command {
     Orderings(orderings::Args),
     /// List the named schemes with their cost and analysed orders
     Schemes(schemes::Args),
+    /// Reproduce the tables and figures of the source papers: published against measured
+    Reproduce(reproduce::Args),
     /// Run every named scheme over a matrix of gamma, mass and dt: completed, blow-up, insane
     Stability(stability::Args),
+    /// Generate code that runs schemes in another engine (a LAMMPS plugin)
+    Export(export::Args),
 }
 
 /// Run the parsed command line; the exit code is non-zero for bad input.
@@ -52,6 +58,8 @@ pub fn main(cli: Cli) -> ExitCode {
         Some(Command::Design(args)) => design::main(args),
         Some(Command::Schemes(args)) => schemes::main(args),
         Some(Command::Stability(args)) => stability::main(args),
+        Some(Command::Reproduce(args)) => reproduce::main(args),
+        Some(Command::Export(args)) => export::main(args),
     }
 }
 

@@ -37,6 +37,6 @@ mod pair_sweep;
 pub use drift::drift;
 pub use exponential::{exponential_velocity, EtdNoise};
 pub use kick::{full_force, kick};
-pub use pair_sweep::{bbk, ou, trotter};
+pub use pair_sweep::{bbk, bbk_update, ou, ou_update, trotter, trotter_update, Change};
 
 pub use dpd_ir::SweepOrder;

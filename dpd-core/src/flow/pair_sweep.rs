@@ -45,13 +45,14 @@ impl Particles<'_> {
 
 /// The change of one pair's relative normal velocity `u = e . v_ij`, `du = slope u + offset`,
 /// with `slope` and `offset` divided by `mu` ([`per_mass`]), so that `slope u + offset` is the
-/// pair's impulse; and the impulse `conservative` of the conservative force that it includes
-/// (0 unless the update applies that force, as T does).
-#[derive(Clone, Copy)]
-struct Change {
-    slope: f64,
-    offset: f64,
-    conservative: f64,
+/// pair's impulse (momentum, added to `p_i` along `e_ij` and taken from `p_j`); and the impulse
+/// `conservative` of the conservative force that it includes (0 unless the update applies that
+/// force, as T does).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Change {
+    pub slope: f64,
+    pub offset: f64,
+    pub conservative: f64,
 }
 
 /// Visit the interacting pairs successively in `order`, each run of the table after
@@ -218,8 +219,15 @@ unsafe fn ou_pair(
     r: f64,
 ) -> Change {
     // SAFETY: the caller's contract.
-    let mu = unsafe { with.mu(pair) };
-    let em1 = expm1(ou_exponent(gamma, h, pair.wr, mu));
+    ou_update(gamma, kbt, h, pair.wr, unsafe { with.mu(pair) }, r)
+}
+
+/// The O update of one pair (see [`ou`]) with random weight `wr`, inverse reduced mass
+/// `mu = 1/m_i + 1/m_j` and standard normal `r`: the pair loop of an engine that owns its
+/// pairs (the LAMMPS plugin's kernels) applies `impulse = slope u + offset` along `e_ij`.
+#[inline(always)]
+pub fn ou_update(gamma: f64, kbt: f64, h: f64, wr: f64, mu: f64, r: f64) -> Change {
+    let em1 = expm1(ou_exponent(gamma, h, wr, mu));
     let (slope, offset) = ou_change(kbt, mu, em1, r);
     Change {
         slope,
@@ -325,18 +333,32 @@ pub fn bbk(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
     let root_h = h.max(0.0).sqrt();
     // SAFETY: `sweep` hands the changes only runs of the table that made `with`.
     let change = move |with: Particles, pair: &Pair, r: f64| {
-        let mu = unsafe { with.mu(pair) };
-        let half_tau_h = 0.5 * gamma * pair.wr * pair.wr * mu * h;
-        let kick = 0.5 * sigma * pair.wr * mu * root_h * r;
-        let scale = 1.0 / (1.0 + half_tau_h);
-        let (slope, offset) = per_mass(-2.0 * half_tau_h * scale, 2.0 * kick * scale, mu);
-        Change {
-            slope,
-            offset,
-            conservative: 0.0,
-        }
+        bbk_update(
+            gamma,
+            sigma,
+            h,
+            root_h,
+            pair.wr,
+            unsafe { with.mu(pair) },
+            r,
+        )
     };
     sweep(sys, stream, order, pair_by_pair(change));
+}
+
+/// The BBK update of one pair (see [`bbk`]) with `root_h = sqrt(max(h, 0))`, random weight
+/// `wr`, inverse reduced mass `mu` and standard normal `r` (as [`ou_update`]).
+#[inline(always)]
+pub fn bbk_update(gamma: f64, sigma: f64, h: f64, root_h: f64, wr: f64, mu: f64, r: f64) -> Change {
+    let half_tau_h = 0.5 * gamma * wr * wr * mu * h;
+    let kick = 0.5 * sigma * wr * mu * root_h * r;
+    let scale = 1.0 / (1.0 + half_tau_h);
+    let (slope, offset) = per_mass(-2.0 * half_tau_h * scale, 2.0 * kick * scale, mu);
+    Change {
+        slope,
+        offset,
+        conservative: 0.0,
+    }
 }
 
 /// T: pairwise conservative + OU, exact per pair (DPD-Trotter):
@@ -348,21 +370,28 @@ pub fn trotter(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
     sys.counters.force_evaluations += 1;
     // SAFETY (both): `sweep` hands the changes only runs of the table that made `with`.
     let change = move |with: Particles, pair: &Pair, r: f64| {
-        let mu = unsafe { with.mu(pair) };
-        let x = gamma * pair.wr * pair.wr * mu * h;
-        let em1 = expm1(-x);
-        let phi1 = if x == 0.0 { 1.0 } else { -em1 / x };
         let f = unsafe { with.soft(pair) }.force(pair.w);
-        let offset = f * mu * h * phi1 + ou_std(kbt, mu, em1) * r;
-        let (slope, offset) = per_mass(em1, offset, mu);
-        Change {
-            slope,
-            offset,
-            conservative: f * h,
-        }
+        trotter_update(gamma, kbt, h, f, pair.wr, unsafe { with.mu(pair) }, r)
     };
     sweep(sys, stream, order, pair_by_pair(change));
     sys.apply_body_force(h);
+}
+
+/// The T update of one pair (see [`trotter`]) with conservative pair force `f` along `e_ij`
+/// ([`crate::potential::Soft::force`]), random weight `wr`, inverse reduced mass `mu` and
+/// standard normal `r` (as [`ou_update`]).
+#[inline(always)]
+pub fn trotter_update(gamma: f64, kbt: f64, h: f64, f: f64, wr: f64, mu: f64, r: f64) -> Change {
+    let x = gamma * wr * wr * mu * h;
+    let em1 = expm1(-x);
+    let phi1 = if x == 0.0 { 1.0 } else { -em1 / x };
+    let offset = f * mu * h * phi1 + ou_std(kbt, mu, em1) * r;
+    let (slope, offset) = per_mass(em1, offset, mu);
+    Change {
+        slope,
+        offset,
+        conservative: f * h,
+    }
 }
 
 /// The [`Changes`] of a flow that computes the change of each pair on its own,

@@ -30,6 +30,10 @@ pub use scalar::FLOAT_TOLERANCE;
 pub const MAX_INVARIANT_ORDER: u32 = 5;
 
 use crate::program::Stage;
+use num_bigint::BigInt;
+use num_integer::Integer;
+use num_rational::BigRational;
+use num_traits::One;
 use scalar::{Rational, Scalar};
 
 /// Limits of an analysis. Values are clamped to the documented ranges, which keep the work
@@ -80,12 +84,29 @@ pub fn analyse_with(stages: &[Stage], options: &Options) -> Analysis {
     }
 }
 
-/// The exact coefficients, if every stage has one.
+/// Largest size, in bits, of the exact coefficients analysed exactly: the bits of the least
+/// common multiple of their denominators plus those of the largest numerator. Word
+/// coefficients of degree `n` carry about `n` times that many bits, so beyond it exact
+/// arithmetic grows slow (a 200-pair string with distinct prime denominators took minutes) and
+/// the analysis works in `f64` instead, as for irrational coefficients.
+pub const MAX_EXACT_BITS: u64 = 256;
+
+/// The exact coefficients, if every stage has one and they are at most [`MAX_EXACT_BITS`] big.
 fn exact_coefficients(stages: &[Stage]) -> Option<Vec<Rational>> {
-    stages
+    let exact: Vec<&BigRational> = stages
         .iter()
-        .map(|s| s.coeff.exact.as_ref().and_then(Rational::from_big))
-        .collect()
+        .map(|s| s.coeff.exact.as_ref())
+        .collect::<Option<_>>()?;
+    let mut lcm = BigInt::one();
+    let mut numerator_bits = 0;
+    for r in &exact {
+        lcm = lcm.lcm(r.denom());
+        numerator_bits = numerator_bits.max(r.numer().bits());
+        if lcm.bits() + numerator_bits > MAX_EXACT_BITS {
+            return None;
+        }
+    }
+    exact.into_iter().map(Rational::from_big).collect()
 }
 
 /// Residuals of the order conditions of one step, in `f64`: the coefficient sums minus one

@@ -1,0 +1,288 @@
+//! The LAMMPS plugin source tree of `dpd export lammps` (docs/lammps.md): the fixed runtime of
+//! `lammps/plugin/` (embedded at compile time), a generated `schemes.cpp` with the stage table
+//! of every exported scheme (dpd-ir's merged [`Program`] stages, the ones `dpd check`
+//! analyses), and a `CMakeLists.txt` that builds the `dpd-lammps` kernels of this workspace
+//! with cargo (a path to the workspace is written into it: the exporter knows where its
+//! sources are from `CARGO_MANIFEST_DIR` at compile time) and links them into the plugin.
+
+use dpd::lang::{compile_with, Options};
+use dpd::schemes::registry::lookup;
+use dpd::{Flow, Program, SweepOrder};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// The fixed runtime: file name and contents.
+const RUNTIME: [(&str, &str); 7] = [
+    (
+        "fix_dpd_split.h",
+        include_str!("../../../lammps/plugin/fix_dpd_split.h"),
+    ),
+    (
+        "fix_dpd_split.cpp",
+        include_str!("../../../lammps/plugin/fix_dpd_split.cpp"),
+    ),
+    (
+        "plugin.cpp",
+        include_str!("../../../lammps/plugin/plugin.cpp"),
+    ),
+    (
+        "schemes.h",
+        include_str!("../../../lammps/plugin/schemes.h"),
+    ),
+    (
+        "dpd_lammps.h",
+        include_str!("../../../lammps/plugin/dpd_lammps.h"),
+    ),
+    ("LICENSE", include_str!("../../../lammps/plugin/LICENSE")),
+    (
+        "README.md",
+        include_str!("../../../lammps/plugin/README.md"),
+    ),
+];
+
+/// The CMake project, with `@WORKSPACE@` standing for the workspace's directory.
+const CMAKE: &str = include_str!("../../../lammps/plugin/CMakeLists.txt");
+
+/// The workspace holding `lammps/kernels`, as compiled in.
+pub fn workspace() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .map_or_else(|| PathBuf::from("."), Path::to_path_buf)
+}
+
+/// One scheme to export: the name as given, its identifier, and its program.
+#[derive(Debug)]
+pub struct Exported {
+    pub name: String,
+    pub ident: String,
+    pub program: Program,
+    pub consistent: bool,
+}
+
+/// The letters the plugin runs.
+fn supported(flow: Flow) -> bool {
+    !matches!(flow, Flow::T)
+}
+
+/// The program of a registry name or scheme string, or why it cannot be exported: unknown
+/// (the registry's message), hand-written, a letter the plugin does not run, or inconsistent
+/// without `allow_inconsistent`.
+pub fn resolve(name: &str, allow_inconsistent: bool) -> Result<Exported, String> {
+    let (label, program) = match lookup(name) {
+        Ok(entry) => match entry.scheme().program() {
+            Some(p) => (entry.name.to_string(), p.clone()),
+            None => {
+                return Err(format!(
+                    "scheme '{name}' is hand-written on the core sub-flows ({}), not a \
+                     splitting program of the scheme language, and the plugin runs only \
+                     splitting programs",
+                    entry.sequence()
+                ))
+            }
+        },
+        Err(unknown) => {
+            let options = Options {
+                allow_inconsistent: true,
+            };
+            match compile_with(name.trim(), &options) {
+                Ok(p) => (name.trim().to_string(), p),
+                Err(diagnostics) => {
+                    let why: Vec<String> = diagnostics.iter().map(|d| d.to_string()).collect();
+                    return Err(format!(
+                        "{unknown} (`dpd schemes` lists them), and '{name}' is not a valid \
+                         scheme string either: {}",
+                        why.join("; ")
+                    ));
+                }
+            }
+        }
+    };
+    if let Some(stage) = program.stages.iter().find(|s| !supported(s.flow)) {
+        return Err(format!(
+            "scheme '{name}' = {program} has a {:?} stage; the LAMMPS plugin runs A, B, O, Ob \
+             and F stages",
+            stage.flow
+        ));
+    }
+    let consistent = program.analysis().consistent;
+    if !consistent && !allow_inconsistent {
+        return Err(format!(
+            "scheme '{name}' = {program} is inconsistent (`dpd check` shows why); pass \
+             --allow-inconsistent to export it anyway"
+        ));
+    }
+    Ok(Exported {
+        ident: identifier(&label),
+        name: label,
+        program,
+        consistent,
+    })
+}
+
+/// A lowercase C identifier for a scheme name: letters and digits kept, every other run of
+/// characters one `_`, a leading digit prefixed with `s`.
+pub fn identifier(name: &str) -> String {
+    let mut out = String::new();
+    for c in name.trim().chars() {
+        if c.is_ascii_alphanumeric() {
+            out.push(c.to_ascii_lowercase());
+        } else if !out.ends_with('_') {
+            out.push('_');
+        }
+    }
+    let out = out.trim_matches('_').to_string();
+    match out.chars().next() {
+        None => "scheme".to_string(),
+        Some(c) if c.is_ascii_digit() => format!("s{out}"),
+        Some(_) => out,
+    }
+}
+
+/// A C string literal of `text`.
+fn c_string(text: &str) -> String {
+    let mut out = String::from("\"");
+    for c in text.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            c if c.is_ascii() && !c.is_ascii_control() => out.push(c),
+            c => {
+                let mut bytes = [0; 4];
+                for b in c.encode_utf8(&mut bytes).bytes() {
+                    let _ = write!(out, "\\{b:03o}");
+                }
+            }
+        }
+    }
+    out.push('"');
+    out
+}
+
+/// The C++ enumerator of a flow (schemes.h).
+fn flow_name(flow: Flow) -> &'static str {
+    match flow {
+        Flow::A => "FLOW_A",
+        Flow::B => "FLOW_B",
+        Flow::O => "FLOW_O",
+        Flow::Bbk => "FLOW_OB",
+        Flow::T => "FLOW_T",
+        Flow::F => "FLOW_F",
+    }
+}
+
+/// `schemes.cpp`: the stage tables of `schemes`.
+pub fn schemes_cpp(schemes: &[Exported]) -> String {
+    let mut out = String::from(
+        "/* Generated by `dpd export lammps`: the stage tables of the exported schemes.\n   \
+         SPDX-License-Identifier: MIT */\n#include \"schemes.h\"\n\nnamespace DpdSplit {\n\n",
+    );
+    for s in schemes {
+        let _ = writeln!(out, "// {} = {}", s.name, s.program);
+        let _ = writeln!(out, "static const Stage stages_{}[] = {{", s.ident);
+        for stage in &s.program.stages {
+            let _ = writeln!(
+                out,
+                "    {{{}, {:?}, {}, {}}},",
+                flow_name(stage.flow),
+                stage.coeff.value,
+                stage.stream,
+                u8::from(stage.order == SweepOrder::Reverse)
+            );
+        }
+        out.push_str("};\n\n");
+    }
+    out.push_str("const Scheme SCHEMES[] = {\n");
+    for s in schemes {
+        let _ = writeln!(
+            out,
+            "    {{{}, {}, {}, {}, {}, stages_{}}},",
+            c_string(&s.name),
+            c_string(&s.ident),
+            c_string(&s.program.to_string()),
+            u8::from(s.consistent),
+            s.program.stages.len(),
+            s.ident
+        );
+    }
+    let _ = writeln!(out, "}};\nconst int NSCHEMES = {};\n\n}}", schemes.len());
+    out
+}
+
+/// The plugin source tree for `schemes` in `dir` (created if missing), building kernels from
+/// the workspace `workspace`.
+pub fn write_tree(dir: &Path, schemes: &[Exported], workspace: &Path) -> std::io::Result<()> {
+    std::fs::create_dir_all(dir)?;
+    for (name, text) in RUNTIME {
+        std::fs::write(dir.join(name), text)?;
+    }
+    std::fs::write(dir.join("schemes.cpp"), schemes_cpp(schemes))?;
+    let cmake = CMAKE.replace("@WORKSPACE@", &workspace.display().to_string());
+    std::fs::write(dir.join("CMakeLists.txt"), cmake)
+}
+
+/// Identifiers made unique by a numeric suffix where two schemes would share one.
+pub fn deduplicate(schemes: &mut [Exported]) {
+    let mut seen = std::collections::HashSet::new();
+    for s in schemes.iter_mut() {
+        let base = s.ident.clone();
+        let mut k = 2;
+        while !seen.insert(s.ident.clone()) {
+            s.ident = format!("{base}_{k}");
+            k += 1;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn registry_names_and_strings_resolve_to_their_programs() {
+        let aboba = resolve("ABOBA", false).unwrap();
+        assert_eq!(
+            (aboba.name.as_str(), aboba.ident.as_str()),
+            ("aboba", "aboba")
+        );
+        let y4 = resolve("S(x1) S(x0) S(x1) O", false).unwrap();
+        assert_eq!(y4.ident, "s_x1_s_x0_s_x1_o");
+        assert_eq!(y4.program.stages.last().unwrap().flow, Flow::O);
+    }
+
+    #[test]
+    fn refusals_say_why() {
+        let unknown = resolve("abobq", false).unwrap_err();
+        assert!(unknown.contains("unknown scheme 'abobq'"), "{unknown}");
+        let hand = resolve("setd", false).unwrap_err();
+        assert!(hand.contains("hand-written"), "{hand}");
+        let trotter = resolve("sas", false).unwrap_err();
+        assert!(trotter.contains("T stage"), "{trotter}");
+        let inconsistent = resolve("A B(1/2) O", false).unwrap_err();
+        assert!(
+            inconsistent.contains("--allow-inconsistent"),
+            "{inconsistent}"
+        );
+        assert!(!resolve("A B(1/2) O", true).unwrap().consistent);
+    }
+
+    #[test]
+    fn the_table_lists_every_stage_with_its_coefficient_stream_and_order() {
+        let mut schemes = vec![
+            resolve("BAOOAB", false).unwrap(),
+            resolve("baooab", false).unwrap(),
+        ];
+        deduplicate(&mut schemes);
+        assert_eq!(schemes[1].ident, "baooab_2");
+        let cpp = schemes_cpp(&schemes);
+        assert!(cpp.contains("static const Stage stages_baooab[] = {\n    {FLOW_B, 0.5, 0, 0},\n    {FLOW_A, 0.5, 0, 0},\n    {FLOW_O, 0.5, 0, 0},\n    {FLOW_O, 0.5, 1, 1},"), "{cpp}");
+        assert!(cpp.contains("const int NSCHEMES = 2;"));
+    }
+
+    #[test]
+    fn identifiers_are_c_names() {
+        assert_eq!(identifier("m-shardlow-2"), "m_shardlow_2");
+        assert_eq!(identifier("2 ABOBA"), "s2_aboba");
+        assert_eq!(identifier("()"), "scheme");
+        assert_eq!(c_string("a\"b\\c"), "\"a\\\"b\\\\c\"");
+    }
+}

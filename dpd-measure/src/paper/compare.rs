@@ -1,0 +1,275 @@
+//! Published against measured, number by number, with a verdict.
+
+use super::measure::{Measured, Measurements, Value};
+use super::{parse_printed, Item, Printed};
+use serde::Serialize;
+
+/// A measured number whose 95 % error bar is wider than this fraction of the published
+/// value cannot tell agreement from a real difference: its verdict is "unresolved".
+pub const RESOLUTION: f64 = 0.2;
+
+/// The two-sided 95 % quantile of Student's t with `dof` degrees of freedom (`None`: the
+/// normal 1.96): agreement is |measured - published| within this many combined standard
+/// uncertainties (the measured standard error and half a unit of the published last digit,
+/// in quadrature). Tabulated to 10, then 1.96 + 2.5 / dof (within 0.01 of the exact value).
+pub fn t95(dof: Option<usize>) -> f64 {
+    const TABLE: [f64; 10] = [12.71, 4.30, 3.18, 2.78, 2.57, 2.45, 2.36, 2.31, 2.26, 2.23];
+    match dof {
+        None => 1.96,
+        Some(0) => f64::INFINITY,
+        Some(d) if d <= 10 => TABLE[d - 1],
+        Some(d) => 1.96 + 2.5 / d as f64,
+    }
+}
+
+/// The verdict on one published number.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "verdict", rename_all = "snake_case")]
+pub enum Verdict {
+    /// Within [`t95`] combined uncertainties (`sigmas` of them apart), or both blow up.
+    Agrees { sigmas: Option<f64> },
+    /// Further apart, or only one of paper and run blows up.
+    Differs { sigmas: Option<f64> },
+    /// The measurement cannot decide, and why.
+    Unresolved { reason: String },
+    /// Published but not comparable (see the item's notes).
+    NotCompared,
+}
+
+impl std::fmt::Display for Verdict {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let apart = |s: &Option<f64>| s.map_or_else(String::new, |s| format!(" ({s:.1} sigma)"));
+        match self {
+            Verdict::Agrees { sigmas } => write!(f, "agrees{}", apart(sigmas)),
+            Verdict::Differs { sigmas } => write!(f, "DIFFERS{}", apart(sigmas)),
+            Verdict::Unresolved { reason } => write!(f, "unresolved: {reason}"),
+            Verdict::NotCompared => write!(f, "not compared"),
+        }
+    }
+}
+
+/// One published number against its measurement.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Comparison {
+    /// The paper's name of the method.
+    pub method: String,
+    pub scheme: String,
+    pub dt: Option<f64>,
+    pub quantity: String,
+    /// As printed.
+    pub published: String,
+    pub measured: Measured,
+    #[serde(flatten)]
+    pub verdict: Verdict,
+}
+
+/// Every published number of `item` against `m` (in the order of the rows); published
+/// `"-"` cells are left out.
+pub fn compare(item: &Item, m: &Measurements) -> Vec<Comparison> {
+    let mut out = Vec::new();
+    for row in &item.published {
+        for (quantity, text) in &row.values {
+            let Ok(printed) = parse_printed(text) else {
+                continue;
+            };
+            if printed == Printed::Absent {
+                continue;
+            }
+            let compared = !item.not_compared.contains(quantity);
+            let measured = if compared {
+                m.get(quantity, &row.scheme, row.dt)
+            } else {
+                Measured::Missing {
+                    reason: "not compared".into(),
+                }
+            };
+            let verdict = if compared {
+                verdict(printed, &measured)
+            } else {
+                Verdict::NotCompared
+            };
+            out.push(Comparison {
+                method: row.method.clone().unwrap_or_else(|| row.scheme.clone()),
+                scheme: row.scheme.clone(),
+                dt: row.dt,
+                quantity: quantity.clone(),
+                published: text.clone(),
+                measured,
+                verdict,
+            });
+        }
+    }
+    out
+}
+
+/// The verdict on `printed` given `measured`.
+pub fn verdict(printed: Printed, measured: &Measured) -> Verdict {
+    let unresolved = |reason: &str| Verdict::Unresolved {
+        reason: reason.into(),
+    };
+    match (printed, measured) {
+        (_, Measured::Missing { reason }) => unresolved(reason),
+        (Printed::Absent, _) => unresolved("nothing published"),
+        (Printed::BlowUp, Measured::BlowUp) => Verdict::Agrees { sigmas: None },
+        (Printed::BlowUp, Measured::Value(_)) | (Printed::Number { .. }, Measured::BlowUp) => {
+            Verdict::Differs { sigmas: None }
+        }
+        (Printed::Number { value, half_unit }, Measured::Value(v)) => number(value, half_unit, *v),
+    }
+}
+
+fn number(published: f64, half_unit: f64, m: Value) -> Verdict {
+    let Some(sigma) = m.sigma else {
+        return Verdict::Unresolved {
+            reason: "no error bar (a single run)".into(),
+        };
+    };
+    let t = t95(m.dof);
+    if t * sigma > RESOLUTION * published.abs() {
+        return Verdict::Unresolved {
+            reason: format!(
+                "95 % error bar {:.0} % of the published value",
+                100.0 * t * sigma / published.abs()
+            ),
+        };
+    }
+    let combined = (sigma * sigma + half_unit * half_unit).sqrt();
+    let sigmas = (m.value - published).abs() / combined;
+    if sigmas <= t {
+        Verdict::Agrees {
+            sigmas: Some(sigmas),
+        }
+    } else {
+        Verdict::Differs {
+            sigmas: Some(sigmas),
+        }
+    }
+}
+
+/// A measured value as text: 4 significant digits and its error.
+pub fn measured_text(m: &Measured) -> String {
+    match m {
+        Measured::Value(Value { value, sigma, .. }) => {
+            let digits = |x: f64| format!("{x:.*}", decimals(x));
+            match sigma {
+                Some(s) => format!("{} ± {}", digits(*value), digits(*s)),
+                None => digits(*value),
+            }
+        }
+        Measured::BlowUp => "blow-up".into(),
+        Measured::Missing { .. } => "-".into(),
+    }
+}
+
+/// Decimals that show 3 significant digits of `x` (at most 6).
+fn decimals(x: f64) -> usize {
+    if x == 0.0 || !x.is_finite() {
+        return 4;
+    }
+    (2 - x.abs().log10().floor() as i64).clamp(0, 6) as usize
+}
+
+/// The comparisons as an aligned table.
+pub fn table(rows: &[Comparison]) -> String {
+    let header = [
+        "method",
+        "dt",
+        "quantity",
+        "published",
+        "measured",
+        "verdict",
+    ];
+    let body: Vec<[String; 6]> = rows
+        .iter()
+        .map(|c| {
+            [
+                c.method.clone(),
+                c.dt.map_or_else(|| "-".into(), |dt| format!("{dt}")),
+                c.quantity.clone(),
+                c.published.clone(),
+                measured_text(&c.measured),
+                c.verdict.to_string(),
+            ]
+        })
+        .collect();
+    let width: Vec<usize> = (0..6)
+        .map(|k| {
+            body.iter()
+                .map(|r| r[k].chars().count())
+                .chain([header[k].len()])
+                .max()
+                .unwrap_or(0)
+        })
+        .collect();
+    let line = |cells: Vec<&str>| {
+        let padded: Vec<String> = cells
+            .iter()
+            .zip(&width)
+            .map(|(c, &w)| format!("{c:<w$}"))
+            .collect();
+        padded.join("  ").trim_end().to_string() + "\n"
+    };
+    let mut out = line(header.to_vec());
+    for r in &body {
+        out += &line(r.iter().map(String::as_str).collect());
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn value(value: f64, sigma: Option<f64>) -> Measured {
+        Measured::Value(Value {
+            value,
+            sigma,
+            dof: None,
+        })
+    }
+
+    #[test]
+    fn verdicts_follow_the_combined_uncertainty() {
+        let p = parse_printed("0.050").unwrap();
+        // 0.002 away with sigma 0.001 (and 0.0005 printed): 1.8 combined sigma, within the
+        // normal 1.96, not with 2 runs (t = 12.7 there, and the bar is then too wide).
+        assert!(matches!(
+            verdict(p, &value(0.052, Some(0.001))),
+            Verdict::Agrees { .. }
+        ));
+        assert!(matches!(
+            verdict(p, &value(0.056, Some(0.001))),
+            Verdict::Differs { .. }
+        ));
+        let two_runs = Measured::Value(Value {
+            value: 0.052,
+            sigma: Some(0.001),
+            dof: Some(1),
+        });
+        assert!(matches!(verdict(p, &two_runs), Verdict::Unresolved { .. }));
+        assert_eq!(t95(Some(4)), 2.78);
+        assert!((t95(Some(30)) - 2.04).abs() < 0.01);
+        // A 2-sigma bar of 40 % of the value cannot decide; a single run has no bar.
+        assert!(matches!(
+            verdict(p, &value(0.05, Some(0.01))),
+            Verdict::Unresolved { .. }
+        ));
+        assert!(matches!(
+            verdict(p, &value(0.05, None)),
+            Verdict::Unresolved { .. }
+        ));
+        let blow_up = parse_printed("blow-up").unwrap();
+        assert!(matches!(
+            verdict(blow_up, &Measured::BlowUp),
+            Verdict::Agrees { .. }
+        ));
+        assert!(matches!(
+            verdict(blow_up, &value(1.0, Some(0.01))),
+            Verdict::Differs { .. }
+        ));
+        assert!(matches!(
+            verdict(p, &Measured::BlowUp),
+            Verdict::Differs { .. }
+        ));
+    }
+}

@@ -1,0 +1,34 @@
+/* The C ABI of the dpd-lammps kernels (lammps/kernels/src/lib.rs), the one implementation of
+   the pair physics the plugin uses. SPDX-License-Identifier: MIT */
+#ifndef DPD_LAMMPS_H
+#define DPD_LAMMPS_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum { DPD_LAMMPS_OK = 0, DPD_LAMMPS_NULL = 1, DPD_LAMMPS_INDEX = 2, DPD_LAMMPS_FLOW = 3,
+       DPD_LAMMPS_TAG = 4 };
+enum { DPD_LAMMPS_SWEEP_O = 0, DPD_LAMMPS_SWEEP_OB = 1 };
+
+typedef struct DpdLammpsKernels DpdLammpsKernels;
+
+DpdLammpsKernels *dpd_lammps_new(double gamma, double kbt, double rc, double exponent,
+                                 char *message, size_t message_len);
+void dpd_lammps_free(DpdLammpsKernels *kernels);
+int dpd_lammps_sweep(const DpdLammpsKernels *kernels, int flow, double h, uint64_t seed,
+                     uint64_t step, int stream, int reverse, size_t npairs, const int *pairs,
+                     size_t natoms, const double *x, double *v, const double *inv_mass,
+                     const int *tag);
+int dpd_lammps_dissipative_random(const DpdLammpsKernels *kernels, double dt, uint64_t seed,
+                                  uint64_t step, int stream, size_t npairs, const int *pairs,
+                                  size_t natoms, const double *x, const double *v,
+                                  const double *inv_mass, const int *tag, double *f);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

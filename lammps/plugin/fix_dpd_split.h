@@ -1,0 +1,63 @@
+/* fix dpd/split: one step of an exported splitting scheme of DPD per LAMMPS step (see
+   docs/lammps.md in the dpd workspace). SPDX-License-Identifier: MIT */
+#ifndef DPD_FIX_DPD_SPLIT_H
+#define DPD_FIX_DPD_SPLIT_H
+
+#include "dpd_lammps.h"
+#include "fix.h"
+#include "schemes.h"
+
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class FixDPDSplit : public Fix {
+ public:
+  FixDPDSplit(class LAMMPS *, int, char **);
+  ~FixDPDSplit() override;
+  int setmask() override;
+  void init() override;
+  void init_list(int, class NeighList *) override;
+  void setup(int) override;
+  void initial_integrate(int) override;
+  void final_integrate() override;
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void unpack_forward_comm(int, int, double *) override;
+  int pack_reverse_comm(int, int, double *) override;
+  void unpack_reverse_comm(int, int *, double *) override;
+
+ private:
+  const DpdSplit::Scheme *scheme;
+  double kt, gamma, rc, exponent;
+  unsigned long long seed;
+  DpdLammpsKernels *kernels;
+  class NeighList *list;
+
+  /// Stages [0, split) run in initial_integrate, the rest in final_integrate, so that
+  /// LAMMPS's own force evaluation falls at the first stage needing forces or pair geometry
+  /// after the positions changed.
+  int split;
+  /// Positions changed since forces and ghost positions were last computed.
+  bool stale;
+  /// Counts position changes and re-neighbourings; the F evaluation is reused while it holds.
+  long long epoch, full_epoch;
+  /// What the pack/unpack functions move: velocities forward, velocity changes or forces back.
+  enum { COMM_V, COMM_DV, COMM_F } comm_mode;
+
+  std::vector<double> inv_mass, ghost_v, full;
+  std::vector<int> colour_pairs[8];
+
+  void run_stages(int from, int to);
+  void drift(double h);
+  void kick(double h, const double *extra);
+  void sweep(const DpdSplit::Stage &stage);
+  void full_force(const DpdSplit::Stage &stage);
+  void refresh(int eflag, int vflag);
+  void prepare_atoms();
+  void colour_pairs_of_list();
+  void check_status(int status, const char *what);
+};
+
+}    // namespace LAMMPS_NS
+
+#endif

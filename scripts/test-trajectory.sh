@@ -1,0 +1,95 @@
+#!/usr/bin/env bash
+# Trajectory files read back by the field's own readers (issue 27): `dpd run` writes GSD, extended
+# XYZ and LAMMPS dump text; the `gsd` package reads every GSD frame (N, box, step, positions,
+# velocities), ASE reads the extended XYZ and the LAMMPS dump and must agree with it to the
+# precision of GSD's f32; a run killed with SIGKILL mid-way leaves a GSD file that gsd reads
+# whole; `--init` restarts from a frame. The readers live in a virtual environment under
+# ${DPD_TEST_CACHE:-$HOME/.cache/dpd-test}/trajectory (reused if present).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+venv="${DPD_TEST_CACHE:-$HOME/.cache/dpd-test}/trajectory"
+if [ ! -x "$venv/bin/python" ] || ! "$venv/bin/python" -c "import gsd.hoomd, ase" 2>/dev/null; then
+    python3 -m venv "$venv"
+    "$venv/bin/pip" install --quiet gsd==5.0.1 ase==3.29.0
+fi
+# The binary `cargo test --workspace` built (optimised test profile); built here only if absent.
+[ -x target/debug/dpd ] || cargo build --quiet -p dpd-cli
+dpd="$PWD/target/debug/dpd"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+# 300 particles, dt = 0.05, 2 time units: 40 steps, a frame every 10 steps, 5 frames.
+run=(run --n 300 --time 2 --dt 0.05 --seed 3)
+for file in t.gsd t.xyz t.lammpstrj; do
+    "$dpd" "${run[@]}" --trajectory "$file" --every 0.5 >/dev/null 2>&1
+done
+# Frame 2 (step 20) as the start of a 10-step run whose first frame must be that state.
+"$dpd" run --n 300 --time 0.5 --dt 0.05 --init t.gsd:2 --trajectory init.gsd --every 0.5 \
+    >/dev/null 2>&1
+# Errors name what is wrong: frame out of range, missing file, particle count.
+expect_error() {
+    if "$dpd" "$@" >/dev/null 2>err.txt; then
+        echo "accepted: dpd $*"; exit 1
+    fi
+}
+expect_error run --n 300 --init t.gsd:5
+grep -q "frame 5 is out of range: the file has 5 frames" err.txt || { cat err.txt; exit 1; }
+expect_error run --n 300 --init none.gsd
+grep -q "none.gsd" err.txt || { cat err.txt; exit 1; }
+expect_error run --n 400 --init t.gsd
+grep -q "has 300 particles, the scene 400" err.txt || { cat err.txt; exit 1; }
+# A long run killed once its file has frames: every committed frame must read back.
+"$dpd" run --n 1500 --time 10000 --trajectory killed.gsd --every 0.05 >/dev/null 2>&1 &
+pid=$!
+for _ in $(seq 100); do
+    [ "$(stat -c %s killed.gsd 2>/dev/null || echo 0)" -gt 200000 ] && break
+    sleep 0.1
+done
+kill -9 "$pid"
+wait "$pid" 2>/dev/null || true
+"$venv/bin/python" - <<'PY'
+import gsd.hoomd
+import numpy as np
+import ase.io
+
+with gsd.hoomd.open("t.gsd") as t:
+    frames = list(t)
+assert len(frames) == 5, len(frames)
+L = 300 / 3.0
+for k, f in enumerate(frames):
+    assert f.configuration.step == 10 * k, f.configuration.step
+    assert f.particles.N == 300
+    box = f.configuration.box
+    assert np.allclose(box[:3], L ** (1 / 3), rtol=1e-6) and not box[3:].any(), box
+    half = box[:3] / 2
+    assert (f.particles.position >= -half).all() and (f.particles.position < half).all()
+    assert f.particles.types == ["A"] and (f.particles.typeid == 0).all()
+    assert sorted(f.log) == ["configurational_temperature", "kinetic_temperature",
+                             "potential_energy", "pressure"], f.log
+    assert all(np.isfinite(v).all() for v in f.log.values()), f.log
+
+# ASE reads the text formats; their positions (written from f64) agree with GSD's f32 values
+# to f32's resolution at the box edge, so the three runs are the same trajectory.
+for name, fmt in [("t.xyz", "extxyz"), ("t.lammpstrj", "lammps-dump-text")]:
+    atoms = ase.io.read(name, index=":", format=fmt)
+    assert len(atoms) == 5, (name, len(atoms))
+    for a, f in zip(atoms, frames):
+        assert len(a) == 300
+        assert np.allclose(a.cell.lengths(), f.configuration.box[:3], rtol=1e-6)
+        centred = a.get_positions() - f.configuration.box[:3] / 2
+        assert np.abs(centred - f.particles.position).max() < 1e-5, name
+
+with gsd.hoomd.open("init.gsd") as t:
+    start = t[0]
+assert start.configuration.step == 0
+assert np.abs(start.particles.position - frames[2].particles.position).max() < 1e-5
+assert np.abs(start.particles.velocity - frames[2].particles.velocity).max() < 1e-5
+
+with gsd.hoomd.open("killed.gsd") as t:
+    n = len(t)
+    assert n >= 2, n
+    for f in t:
+        assert f.particles.N == 1500 and np.isfinite(f.particles.position).all()
+print(f"trajectory readers: 5 frames each of GSD, extended XYZ and LAMMPS dump agree; "
+      f"--init continues frame 2; the killed run's {n} frames read back")
+PY
