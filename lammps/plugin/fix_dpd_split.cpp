@@ -76,7 +76,7 @@ bool needs_ghosts(int flow)
 FixDPDSplit::FixDPDSplit(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), scheme(nullptr), kernels(nullptr), list(nullptr), split(0),
     last_drift(-1), forces_stale(false), ghosts_stale(false), step_eflag(0), step_vflag(0),
-    epoch(0), full_epoch(-1), comm_mode(COMM_V), full_virial{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}
+    epoch(0), full_epoch(-1), colour_build(-1), comm_mode(COMM_V), full_virial{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}
 {
   const char *usage = "fix ID group dpd/split SCHEME kT gamma r_c seed [exponent s]";
   if (narg != 8 && narg != 10)
@@ -320,9 +320,14 @@ void FixDPDSplit::prepare_atoms()
     inv_mass[i] = 1.0 / (atom->rmass ? atom->rmass[i] : atom->mass[atom->type[i]]);
 }
 
-/// The pairs of the neighbour list, bucketed by the octant of the subdomain holding atom i.
+/// The pairs of the neighbour list, bucketed by the octant of the subdomain holding atom i,
+/// kept until the next neighbour-list build (or, in a deforming box, recomputed every time).
+/// An atom's colour is that of its position at the build: it has moved at most skin/2 since,
+/// which the size limit of the staged sweep already allows for (see the header of this file).
 void FixDPDSplit::colour_pairs_of_list()
 {
+  if (colour_build == neighbor->ncalls && !domain->box_change) return;
+  colour_build = neighbor->ncalls;
   double **x = atom->x;
   // In a triclinic box the octants are those of the subdomain in lamda coordinates.
   bool tilted = domain->triclinic;

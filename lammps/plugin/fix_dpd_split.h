@@ -44,6 +44,8 @@ class FixDPDSplit : public Fix {
   int step_eflag, step_vflag;
   /// Counts position changes and re-neighbourings; the F evaluation is reused while it holds.
   long long epoch, full_epoch;
+  /// The neighbour-list build (neighbor->ncalls) the colour buckets were made from.
+  bigint colour_build;
   /// What the pack/unpack functions move: velocities forward, velocity changes or forces back.
   enum { COMM_V, COMM_DV, COMM_F } comm_mode;
 
