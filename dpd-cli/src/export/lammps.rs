@@ -260,7 +260,10 @@ mod tests {
         let hand = resolve("setd", false).unwrap_err();
         assert!(hand.contains("hand-written"), "{hand}");
         let trotter = resolve("sas", false).unwrap_err();
-        assert!(trotter.contains("T stage"), "{trotter}");
+        assert!(
+            trotter.contains("T stage") && trotter.contains("conservative force"),
+            "{trotter}"
+        );
         let inconsistent = resolve("A B(1/2) O", false).unwrap_err();
         assert!(
             inconsistent.contains("--allow-inconsistent"),

@@ -596,6 +596,65 @@ mod tests {
         assert_eq!(v, before);
     }
 
+    /// The C entry points: a sweep through the ABI equals the Rust call; null arrays where
+    /// values are needed and streams outside 0..=255 are refused with no velocity changed.
+    #[test]
+    fn the_c_abi_checks_its_pointers_and_sweeps_like_the_rust_call() {
+        let k = Kernels::new(4.5, 1.0, 1.0, 2.0).unwrap();
+        let (x, v, inv_mass, tag) = scene();
+        let pairs: [c_int; 4] = [0, 1, 1, 2];
+        let mut expected = v.clone();
+        let status = k.sweep(
+            SweepFlow::Ou,
+            0.1,
+            (3, 4, 5),
+            &[[0, 1], [1, 2]],
+            false,
+            &x,
+            &mut expected,
+            &inv_mass,
+            &tag,
+            None,
+        );
+        assert_eq!(status, DPD_LAMMPS_OK);
+        let call = |stream: c_int, v: *mut f64, x: *const f64| {
+            // SAFETY: every non-null pointer points to arrays of the lengths given.
+            unsafe {
+                dpd_lammps_sweep(
+                    &k,
+                    0,
+                    0.1,
+                    3,
+                    4,
+                    stream,
+                    0,
+                    2,
+                    pairs.as_ptr(),
+                    3,
+                    x,
+                    v,
+                    inv_mass.as_ptr(),
+                    tag.as_ptr(),
+                    std::ptr::null_mut(),
+                )
+            }
+        };
+        let mut through_abi = v.clone();
+        assert_eq!(call(5, through_abi.as_mut_ptr(), x.as_ptr()), DPD_LAMMPS_OK);
+        assert_eq!(through_abi, expected);
+        let mut untouched = v.clone();
+        assert_eq!(
+            call(256, untouched.as_mut_ptr(), x.as_ptr()),
+            DPD_LAMMPS_FLOW
+        );
+        assert_eq!(call(5, std::ptr::null_mut(), x.as_ptr()), DPD_LAMMPS_NULL);
+        assert_eq!(
+            call(5, untouched.as_mut_ptr(), std::ptr::null()),
+            DPD_LAMMPS_NULL
+        );
+        assert_eq!(untouched, v);
+    }
+
     #[test]
     fn invalid_parameters_name_the_field() {
         let e = Kernels::new(4.5, -1.0, 1.0, 2.0).err().unwrap();
