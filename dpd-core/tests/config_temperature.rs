@@ -11,7 +11,7 @@ fn configurational_temperature_of_boltzmann_samples_is_kbt() {
     let kbt = 1.0;
     let mut sys = common::system(100, 3.0, Params::builder().kbt(kbt), 0.01, 21);
     let bx = *sys.boundary();
-    let mut rng = rand::rngs::StdRng::seed_from_u64(99);
+    let mut rng = rand_chacha::ChaCha12Rng::seed_from_u64(99);
     let mut q = sys.positions().to_vec();
     let (a, rc) = (sys.params().a(0, 0), sys.params().rc());
     // Energy of particle i at x with all others: phi(r) = (a r_c / 2)(1 - r/r_c)^2.

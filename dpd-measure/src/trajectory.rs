@@ -129,7 +129,7 @@ impl Recorder {
 
     /// Append a frame if one is due at the system's step.
     pub fn record_if_due(&mut self, sys: &mut System) -> Result<(), ParamError> {
-        if sys.step() % self.every_steps == 0 {
+        if sys.step().is_multiple_of(self.every_steps) {
             self.record(sys)?;
         }
         Ok(())

@@ -302,7 +302,7 @@ impl GsdWriter {
             let bytes = im.iter().flatten().flat_map(|i| i.to_le_bytes()).collect();
             add("particles/image", Kind::I32, n, 3, bytes)?;
         }
-        if first.map_or(true, |g| g.types != f.types) {
+        if first.is_none_or(|g| g.types != f.types) {
             let width = f.types.iter().map(|t| t.len()).max().unwrap_or(0) + 1;
             let bytes = f.types.iter().flat_map(|t| {
                 let mut b = t.as_bytes().to_vec();
@@ -317,14 +317,14 @@ impl GsdWriter {
                 bytes.collect(),
             )?;
         }
-        if first.map_or(true, |g| g.typeid != f.typeid) {
+        if first.is_none_or(|g| g.typeid != f.typeid) {
             let bytes = f.typeid.iter().flat_map(|t| t.to_le_bytes()).collect();
             add("particles/typeid", Kind::U32, n, 1, bytes)?;
         }
         if let Some(m) = f
             .masses
             .as_ref()
-            .filter(|m| first.map_or(true, |g| g.masses.as_ref() != Some(m)))
+            .filter(|m| first.is_none_or(|g| g.masses.as_ref() != Some(m)))
         {
             add("particles/mass", Kind::F32, n, 1, f32s(m.iter().copied()))?;
         }
@@ -436,7 +436,7 @@ impl GsdReader {
         let (index_location, index_entries) = (word(1), word(2));
         let (namelist_location, namelist_segments) = (word(3), word(4));
         let read = |at: u64, len: u64, what: &str| -> Result<Vec<u8>, TrajectoryError> {
-            if at.checked_add(len).map_or(true, |e| e > size) {
+            if at.checked_add(len).is_none_or(|e| e > size) {
                 return Err(bad(format!(
                     "the {what} ({len} bytes at {at}) ends past the file's {size} bytes"
                 )));

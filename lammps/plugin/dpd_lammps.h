@@ -22,11 +22,12 @@ void dpd_lammps_free(DpdLammpsKernels *kernels);
 int dpd_lammps_sweep(const DpdLammpsKernels *kernels, int flow, double h, uint64_t seed,
                      uint64_t step, int stream, int reverse, size_t npairs, const int *pairs,
                      size_t natoms, const double *x, double *v, const double *inv_mass,
-                     const int *tag);
+                     const int *tag, double *virial);
 int dpd_lammps_dissipative_random(const DpdLammpsKernels *kernels, double dt, uint64_t seed,
                                   uint64_t step, int stream, size_t npairs, const int *pairs,
                                   size_t natoms, const double *x, const double *v,
-                                  const double *inv_mass, const int *tag, double *f);
+                                  const double *inv_mass, const int *tag, double *f,
+                                  double *virial);
 
 #ifdef __cplusplus
 }

@@ -58,17 +58,25 @@ std::string compiled_names()
   return names;
 }
 
-/// Whether a stage needs forces or pair geometry at the current positions.
-bool needs_positions(int flow)
+/// Whether a stage needs the forces at the current positions (B kicks by them; F adds its
+/// pair forces to them).
+bool needs_forces(int flow)
 {
-  return flow != DpdSplit::FLOW_A;
+  return flow == DpdSplit::FLOW_B || flow == DpdSplit::FLOW_F;
+}
+
+/// Whether a stage needs the current positions of ghost atoms (pair geometry), but no forces.
+bool needs_ghosts(int flow)
+{
+  return flow == DpdSplit::FLOW_O || flow == DpdSplit::FLOW_OB;
 }
 
 }    // namespace
 
 FixDPDSplit::FixDPDSplit(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), scheme(nullptr), kernels(nullptr), list(nullptr), split(0),
-    stale(false), epoch(0), full_epoch(-1), comm_mode(COMM_V)
+    last_drift(-1), forces_stale(false), ghosts_stale(false), step_eflag(0), step_vflag(0),
+    epoch(0), full_epoch(-1), colour_build(-1), comm_mode(COMM_V), full_virial{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}
 {
   const char *usage = "fix ID group dpd/split SCHEME kT gamma r_c seed [exponent s]";
   if (narg != 8 && narg != 10)
@@ -114,7 +122,8 @@ FixDPDSplit::FixDPDSplit(LAMMPS *lmp, int narg, char **arg) :
   for (int k = 0; k < scheme->nstages; ++k)
     if (scheme->stages[k].flow == DpdSplit::FLOW_T)
       error->all(FLERR, "fix dpd/split: scheme '{}' = {} has a T stage, which this plugin does "
-                 "not run", scheme->name, scheme->program);
+                 "not run: T's exact pair update needs each pair's conservative force, and LAMMPS "
+                 "computes forces per atom", scheme->name, scheme->program);
   char message[256] = {0};
   kernels = dpd_lammps_new(gamma, kt, rc, exponent, message, sizeof(message));
   if (!kernels) error->all(FLERR, "fix dpd/split: {}", message);
@@ -124,12 +133,18 @@ FixDPDSplit::FixDPDSplit(LAMMPS *lmp, int narg, char **arg) :
                    scheme->name, scheme->program);
 
   time_integrate = 1;
+  // Off unless `fix_modify ID virial yes`: the pair impulses' stress (needed under shear).
+  virial_global_flag = 1;
   dynamic_group_allow = 0;
   comm_forward = 3;
   comm_reverse = 3;
 
-  // Where LAMMPS's force evaluation falls: the cyclic state of the step is found by running
-  // the analysis twice, the second time starting from the staleness the step ends with.
+  // Where LAMMPS's force evaluation falls: at the first stage needing forces after a drift.
+  // The step is cyclic (a step ending with a drift leaves the next one's first stages with
+  // moved positions), so the analysis runs twice, the second time starting from the staleness
+  // the step ends with.
+  for (int k = 0; k < scheme->nstages; ++k)
+    if (scheme->stages[k].flow == DpdSplit::FLOW_A) last_drift = k;
   bool stale_at_start = false;
   for (int pass = 0; pass < 2; ++pass) {
     bool s = stale_at_start;
@@ -138,7 +153,7 @@ FixDPDSplit::FixDPDSplit(LAMMPS *lmp, int narg, char **arg) :
       int flow = scheme->stages[k].flow;
       if (flow == DpdSplit::FLOW_A)
         s = true;
-      else if (s && needs_positions(flow)) {
+      else if (s && needs_forces(flow)) {
         split = k;
         break;
       }
@@ -148,7 +163,7 @@ FixDPDSplit::FixDPDSplit(LAMMPS *lmp, int narg, char **arg) :
       int flow = scheme->stages[k].flow;
       if (flow == DpdSplit::FLOW_A)
         s = true;
-      else if (s && needs_positions(flow))
+      else if (s && needs_forces(flow))
         s = false;
     }
     stale_at_start = s;
@@ -170,8 +185,6 @@ void FixDPDSplit::init()
   if (igroup != 0)
     error->all(FLERR, "fix dpd/split: group '{}' given; the fix integrates all atoms (group all), "
                "since its pair sweeps couple every pair within r_c", group->names[igroup]);
-  if (domain->triclinic)
-    error->all(FLERR, "fix dpd/split: a triclinic box is not supported (orthogonal boxes only)");
   if (!atom->tag_enable)
     error->all(FLERR, "fix dpd/split: needs atom IDs (atom_modify id yes), the pair noise is keyed by them");
   if (!force->pair)
@@ -182,16 +195,33 @@ void FixDPDSplit::init()
   if (!force->newton_pair)
     error->all(FLERR, "fix dpd/split: needs newton_pair on (each pair in one rank's list only)");
   if (update->dt <= 0.0) error->all(FLERR, "fix dpd/split: timestep must be > 0");
+  check_subdomain_size();
+  neighbor->add_request(this);
+}
+
+/// Refuse subdomains thinner than 4 r_c + 2 skin (see the header of this file) along a
+/// dimension that is periodic or split over ranks. In a triclinic box the thickness is the
+/// distance between the subdomain's faces of constant lamda_d, `(subhi - sublo)_lamda / |grad
+/// lamda_d|`; it shrinks as fix deform tilts the box, so it is checked again at every sweep.
+void FixDPDSplit::check_subdomain_size()
+{
+  const double *hi = domain->h_inv;    // Voigt order: xx, yy, zz, yz, xz, xy
+  double gradient[3] = {1.0 / domain->prd[0], 1.0 / domain->prd[1], 1.0 / domain->prd[2]};
+  if (domain->triclinic) {
+    gradient[0] = sqrt(hi[0] * hi[0] + hi[5] * hi[5] + hi[4] * hi[4]);
+    gradient[1] = sqrt(hi[1] * hi[1] + hi[3] * hi[3]);
+    gradient[2] = hi[2];
+  }
   for (int d = 0; d < domain->dimension; ++d) {
     if (!domain->periodicity[d] && comm->procgrid[d] == 1) continue;
-    double side = domain->prd[d] / comm->procgrid[d];
+    double side = 1.0 / (comm->procgrid[d] * gradient[d]);
     double need = 4.0 * rc + 2.0 * neighbor->skin;
     if (side < need)
       error->all(FLERR, "fix dpd/split: subdomain side {:.4g} along {} is below 4 r_c + 2 skin = "
                  "{:.4g}, the size the staged sweep needs to stay sequential; use fewer ranks "
-                 "along {} (processors command) or a larger box", side, "xyz"[d], need, "xyz"[d]);
+                 "along {} (processors command) or a larger box{}", side, "xyz"[d], need, "xyz"[d],
+                 domain->triclinic ? " (in a tilted box: the distance between its faces)" : "");
   }
-  neighbor->add_request(this);
 }
 
 void FixDPDSplit::init_list(int, NeighList *ptr)
@@ -201,35 +231,47 @@ void FixDPDSplit::init_list(int, NeighList *ptr)
 
 void FixDPDSplit::setup(int)
 {
-  stale = false;
+  forces_stale = ghosts_stale = false;
   ++epoch;
 }
 
-void FixDPDSplit::initial_integrate(int)
+void FixDPDSplit::initial_integrate(int vflag)
 {
+  // The energy and virial flags of this step, as LAMMPS's Verlet sets them for its force
+  // evaluation: non-zero on steps where a compute needs energy or virial.
+  bigint now = update->ntimestep;
+  step_eflag = (update->eflag_global == now ? ENERGY_GLOBAL : 0) |
+      (update->eflag_atom == now ? ENERGY_ATOM : 0);
+  step_vflag = vflag;
+  // The fix's own virial (the pair impulses of the sweeps and F's pair forces), when
+  // `fix_modify ID virial yes` asks for it: zeroed here on steps that tally the virial.
+  v_init(vflag);
   run_stages(0, split);
 }
 
 void FixDPDSplit::final_integrate()
 {
   // LAMMPS has communicated, possibly re-neighboured, and computed forces.
-  stale = false;
+  forces_stale = ghosts_stale = false;
   ++epoch;
   run_stages(split, scheme->nstages);
-  // Observables at the step's end: re-evaluate forces (and so the virial) at the final
-  // positions on steps where a compute needs energy or virial.
-  bigint now = update->ntimestep;
-  if (stale && (update->eflag_global == now || update->vflag_global == now)) {
-    int vflag = update->vflag_global == now ? (force->newton_pair ? VIRIAL_FDOTR : VIRIAL_PAIR) : 0;
-    refresh(update->eflag_global == now, vflag);
-  }
+  // Observables at the step's end: when the last force evaluation of the step came before its
+  // last drift, re-evaluate forces (and so energy and virial) at the final positions on steps
+  // where a compute needs them.
+  if (forces_stale && (step_eflag || step_vflag)) refresh(step_eflag, step_vflag);
 }
 
 void FixDPDSplit::run_stages(int from, int to)
 {
   for (int k = from; k < to; ++k) {
     const Stage &stage = scheme->stages[k];
-    if (stale && needs_positions(stage.flow)) refresh(0, 0);
+    if (forces_stale && needs_forces(stage.flow)) {
+      // After the step's last drift the positions are final: tally energy and virial there.
+      bool final_positions = k > last_drift;
+      refresh(final_positions ? step_eflag : 0, final_positions ? step_vflag : 0);
+    } else if (ghosts_stale && needs_ghosts(stage.flow)) {
+      refresh_ghosts();
+    }
     double h = stage.coeff * update->dt;
     switch (stage.flow) {
       case DpdSplit::FLOW_A:
@@ -256,7 +298,7 @@ void FixDPDSplit::drift(double h)
   double **x = atom->x, **v = atom->v;
   for (int i = 0; i < atom->nlocal; ++i)
     for (int d = 0; d < 3; ++d) x[i][d] += h * v[i][d];
-  stale = true;
+  forces_stale = ghosts_stale = true;
   ++epoch;
 }
 
@@ -278,16 +320,31 @@ void FixDPDSplit::prepare_atoms()
     inv_mass[i] = 1.0 / (atom->rmass ? atom->rmass[i] : atom->mass[atom->type[i]]);
 }
 
-/// The pairs of the neighbour list, bucketed by the octant of the subdomain holding atom i.
+/// The pairs of the neighbour list, bucketed by the octant of the subdomain holding atom i,
+/// kept until the next neighbour-list build (or, in a deforming box, recomputed every time).
+/// An atom's colour is that of its position at the build: it has moved at most skin/2 since,
+/// which the size limit of the staged sweep already allows for (see the header of this file).
 void FixDPDSplit::colour_pairs_of_list()
 {
+  if (colour_build == neighbor->ncalls && !domain->box_change) return;
+  colour_build = neighbor->ncalls;
   double **x = atom->x;
+  // In a triclinic box the octants are those of the subdomain in lamda coordinates.
+  bool tilted = domain->triclinic;
+  const double *lo = tilted ? domain->sublo_lamda : domain->sublo;
+  const double *hi = tilted ? domain->subhi_lamda : domain->subhi;
   double mid[3];
-  for (int d = 0; d < 3; ++d) mid[d] = 0.5 * (domain->sublo[d] + domain->subhi[d]);
+  for (int d = 0; d < 3; ++d) mid[d] = 0.5 * (lo[d] + hi[d]);
   for (auto &pairs : colour_pairs) pairs.clear();
   for (int ii = 0; ii < list->inum; ++ii) {
     int i = list->ilist[ii];
-    int colour = (x[i][0] >= mid[0]) | ((x[i][1] >= mid[1]) << 1) | ((x[i][2] >= mid[2]) << 2);
+    double lamda[3];
+    const double *p = x[i];
+    if (tilted) {
+      domain->x2lamda(x[i], lamda);
+      p = lamda;
+    }
+    int colour = (p[0] >= mid[0]) | ((p[1] >= mid[1]) << 1) | ((p[2] >= mid[2]) << 2);
     std::vector<int> &pairs = colour_pairs[colour];
     const int *jlist = list->firstneigh[i];
     for (int jj = 0; jj < list->numneigh[i]; ++jj) {
@@ -306,10 +363,12 @@ void FixDPDSplit::check_status(int status, const char *what)
 
 void FixDPDSplit::sweep(const Stage &stage)
 {
+  if (domain->box_change) check_subdomain_size();
   prepare_atoms();
   colour_pairs_of_list();
   int flow = stage.flow == DpdSplit::FLOW_O ? DPD_LAMMPS_SWEEP_O : DPD_LAMMPS_SWEEP_OB;
   double h = stage.coeff * update->dt;
+  double impulses[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
   comm_mode = COMM_V;
   comm->forward_comm(this);
   for (int c = 0; c < 8; ++c) {
@@ -319,13 +378,16 @@ void FixDPDSplit::sweep(const Stage &stage)
     check_status(dpd_lammps_sweep(kernels, flow, h, seed, (uint64_t) update->ntimestep,
                                   stage.stream, stage.reverse, pairs.size() / 2, pairs.data(),
                                   nall, &atom->x[0][0], &atom->v[0][0], inv_mass.data(),
-                                  atom->tag),
+                                  atom->tag, vflag_global ? impulses : nullptr),
                  "sweep");
     comm_mode = COMM_DV;
     comm->reverse_comm(this);
     comm_mode = COMM_V;
     comm->forward_comm(this);
   }
+  // The momentum the sweep moved between atoms, per unit time: its part of the stress.
+  if (vflag_global)
+    for (int k = 0; k < 6; ++k) virial[k] += impulses[k] / update->dt;
 }
 
 void FixDPDSplit::full_force(const Stage &stage)
@@ -336,26 +398,34 @@ void FixDPDSplit::full_force(const Stage &stage)
     comm_mode = COMM_V;
     comm->forward_comm(this);
     full.assign(3 * nall, 0.0);
+    for (double &w : full_virial) w = 0.0;
     colour_pairs_of_list();
     for (auto &pairs : colour_pairs)
       check_status(dpd_lammps_dissipative_random(kernels, update->dt, seed,
                                                  (uint64_t) update->ntimestep, stage.stream,
                                                  pairs.size() / 2, pairs.data(), nall,
                                                  &atom->x[0][0], &atom->v[0][0],
-                                                 inv_mass.data(), atom->tag, full.data()),
+                                                 inv_mass.data(), atom->tag, full.data(),
+                                                 thermo_virial ? full_virial : nullptr),
                    "full force");
     comm_mode = COMM_F;
     comm->reverse_comm(this);
     full_epoch = epoch;
   }
   kick(stage.coeff * update->dt, full.data());
+  // A kick of coeff dt by these pair forces moves coeff dt F of momentum: per unit time coeff F.
+  if (vflag_global)
+    for (int k = 0; k < 6; ++k) virial[k] += stage.coeff * full_virial[k];
 }
 
-/// Forces and ghost positions at the current positions, as LAMMPS's Verlet computes them
-/// between initial_integrate and final_integrate (re-neighbouring when the skin is used up).
-void FixDPDSplit::refresh(int eflag, int vflag)
+/// Ghost positions at the current positions, as LAMMPS's Verlet updates them before its force
+/// evaluation: re-neighbour if the skin is used up (pbc, exchange, borders, build), or else
+/// forward-communicate positions (and velocities).
+void FixDPDSplit::refresh_ghosts()
 {
   if (neighbor->decide()) {
+    modify->pre_exchange();
+    if (domain->triclinic) domain->x2lamda(atom->nlocal);
     domain->pbc();
     if (domain->box_change) {
       domain->reset_box();
@@ -364,10 +434,23 @@ void FixDPDSplit::refresh(int eflag, int vflag)
     }
     comm->exchange();
     comm->borders();
+    if (domain->triclinic) domain->lamda2x(atom->nlocal + atom->nghost);
+    modify->pre_neighbor();
     neighbor->build(1);
+    modify->post_neighbor();
+    ++epoch;
   } else {
     comm->forward_comm();
   }
+  ghosts_stale = false;
+}
+
+/// Forces at the current positions, as LAMMPS's Verlet computes them between
+/// initial_integrate and final_integrate: ghost positions, then pair, bonded and kspace forces
+/// (tallying energy and virial as `eflag`, `vflag` say), reverse-communicated.
+void FixDPDSplit::refresh(int eflag, int vflag)
+{
+  refresh_ghosts();
   ++epoch;
   int nall = atom->nlocal + (force->newton ? atom->nghost : 0);
   memset(&atom->f[0][0], 0, sizeof(double) * 3 * nall);
@@ -380,14 +463,28 @@ void FixDPDSplit::refresh(int eflag, int vflag)
   }
   if (force->kspace && force->kspace->compute_flag) force->kspace->compute(eflag, vflag);
   if (force->newton) comm->reverse_comm();
-  stale = false;
+  forces_stale = false;
 }
 
-int FixDPDSplit::pack_forward_comm(int n, int *list_, double *buf, int, int *)
+int FixDPDSplit::pack_forward_comm(int n, int *list_, double *buf, int pbc_flag, int *pbc)
 {
+  // Under fix deform ... remap v, a ghost that is a periodic image across a sheared boundary
+  // moves with its owner's velocity plus the box's deformation rate times the image shift,
+  // as LAMMPS's own velocity communication (comm_modify vel yes) gives it.
+  double shift[3] = {0.0, 0.0, 0.0};
+  if (pbc_flag && domain->deform_vremap) {
+    const double *rate = domain->h_rate;    // Voigt order: xx, yy, zz, yz, xz, xy
+    shift[0] = pbc[0] * rate[0] + pbc[5] * rate[5] + pbc[4] * rate[4];
+    shift[1] = pbc[1] * rate[1] + pbc[3] * rate[3];
+    shift[2] = pbc[2] * rate[2];
+  }
   double **v = atom->v;
-  for (int k = 0; k < n; ++k)
-    for (int d = 0; d < 3; ++d) buf[3 * k + d] = v[list_[k]][d];
+  int *mask = atom->mask;
+  for (int k = 0; k < n; ++k) {
+    int j = list_[k];
+    bool remapped = mask[j] & domain->deform_groupbit;
+    for (int d = 0; d < 3; ++d) buf[3 * k + d] = v[j][d] + (remapped ? shift[d] : 0.0);
+  }
   return 3 * n;
 }
 

@@ -34,17 +34,24 @@ class FixDPDSplit : public Fix {
   class NeighList *list;
 
   /// Stages [0, split) run in initial_integrate, the rest in final_integrate, so that
-  /// LAMMPS's own force evaluation falls at the first stage needing forces or pair geometry
-  /// after the positions changed.
+  /// LAMMPS's own force evaluation falls at the first stage needing forces after a drift.
   int split;
-  /// Positions changed since forces and ghost positions were last computed.
-  bool stale;
+  /// The index of the step's last drift (A) stage, -1 if none.
+  int last_drift;
+  /// Positions changed since forces, or since ghost positions, were last computed.
+  bool forces_stale, ghosts_stale;
+  /// The energy and virial flags of the current step (0 on steps without thermo output).
+  int step_eflag, step_vflag;
   /// Counts position changes and re-neighbourings; the F evaluation is reused while it holds.
   long long epoch, full_epoch;
+  /// The neighbour-list build (neighbor->ncalls) the colour buckets were made from.
+  bigint colour_build;
   /// What the pack/unpack functions move: velocities forward, velocity changes or forces back.
   enum { COMM_V, COMM_DV, COMM_F } comm_mode;
 
   std::vector<double> inv_mass, ghost_v, full;
+  /// The virial of the F pair forces in `full` (xx, yy, zz, xy, xz, yz).
+  double full_virial[6];
   std::vector<int> colour_pairs[8];
 
   void run_stages(int from, int to);
@@ -53,6 +60,8 @@ class FixDPDSplit : public Fix {
   void sweep(const DpdSplit::Stage &stage);
   void full_force(const DpdSplit::Stage &stage);
   void refresh(int eflag, int vflag);
+  void refresh_ghosts();
+  void check_subdomain_size();
   void prepare_atoms();
   void colour_pairs_of_list();
   void check_status(int status, const char *what);

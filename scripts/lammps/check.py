@@ -27,6 +27,10 @@ SKIN = 0.4
 
 FAILURES = []
 
+# The exported schemes the checks use: fix identifier -> the name `dpd run` takes.
+SCHEMES = {"aboba": "aboba", "baoab": "baoab", "obabo": "obabo",
+           "s_x1_s_x0_s_x1_o": "S(x1) S(x0) S(x1) O", "vv": "vv"}
+
 
 def check(ok, what):
     print(("ok   " if ok else "FAIL ") + what, flush=True)
@@ -66,9 +70,12 @@ run {steps}
 """
 
 
-def plugin_fix(scheme, seed=4321):
+def plugin_fix(scheme, seed=4321, virial=False):
+    """Conservative forces from pair dpd (a = 25, no friction), the rest from the fix; with
+    `virial`, the fix's pair forces and impulses count in the pressure, as pair dpd's do."""
     return (f"pair_style dpd 1.0 1.0 999\npair_coeff 1 1 25.0 0.0 1.0\n"
-            f"fix 1 all dpd/split {scheme} 1.0 {GAMMA} 1.0 {seed}")
+            f"fix 1 all dpd/split {scheme} 1.0 {GAMMA} 1.0 {seed}"
+            + ("\nfix_modify 1 virial yes" if virial else ""))
 
 
 def native_vv(seed=4321):
@@ -100,9 +107,10 @@ def thermo_rows(output):
     return rows
 
 
-def mean_and_error(values, blocks=10):
-    """Mean and its standard error from `blocks` block averages (blocks longer than the
-    correlation time of T_K and P in the standard box, ~1 time unit, so nearly independent)."""
+def mean_and_error(values, blocks=20):
+    """Mean and its standard error from `blocks` block averages (blocks of at least 3 time
+    units, longer than the correlation time of T_K and P in the standard box, so nearly
+    independent; 19 degrees of freedom keep the error estimate itself within ~15 %)."""
     size = len(values) // blocks
     means = [sum(values[k * size:(k + 1) * size]) / size for k in range(blocks)]
     m = sum(means) / blocks
@@ -111,81 +119,175 @@ def mean_and_error(values, blocks=10):
 
 
 def dpd_run(args, scheme, dt, time, runs):
+    """`dpd run` on the standard scene: mean and standard error over `runs` independent runs
+    of T_K and pressure (each run averages the last 80 % of `time`)."""
     cmd = [args.dpd, "run", "--scheme", scheme, "--gamma", str(GAMMA), "--n", str(N),
            "--dt", str(dt), "--time", str(time), "--runs", str(runs), "--json"]
     out = subprocess.run(cmd, capture_output=True, text=True, timeout=900)
     if out.returncode != 0:
         raise SystemExit(f"{' '.join(cmd)} failed: {out.stderr}")
     results = json.loads(out.stdout)["results"]
-    stats = {}
+    stats = []
     for key in ("kinetic_temperature", "pressure"):
         values = [r[key] for r in results]
         m = sum(values) / len(values)
         var = sum((x - m) ** 2 for x in values) / (len(values) - 1)
-        stats[key] = (m, math.sqrt(var / len(values)))
+        stats.append((m, math.sqrt(var / len(values))))
     return stats
 
 
-def agree(a, b, sigmas=4.0):
-    """Means (m, se) agree within `sigmas` combined standard errors: with ~30 comparisons a
-    correct plugin fails one by chance with probability ~30 * 6e-5 = 2e-3."""
-    return abs(a[0] - b[0]) <= sigmas * math.hypot(a[1], b[1])
+SIGMAS = 4.0
+
+
+def sigmas_apart(a, b):
+    """How many combined standard errors apart two (mean, standard error) pairs are."""
+    return abs(a[0] - b[0]) / math.hypot(a[1], b[1])
+
+
+def agree(a, b):
+    """Means (m, se) agree within SIGMAS = 4 combined standard errors: a correct plugin fails
+    one comparison by chance with probability ~6e-5 (normal errors; block and run averages
+    are close to normal), ~2e-3 over the ~30 comparisons of the full check."""
+    return sigmas_apart(a, b) <= SIGMAS
+
+
+KEYS = ("T_K", "pressure")
+
+
+def lammps_averages(args, fix, ranks, name, dt, equil, steps, thermo):
+    """T_K and pressure of a LAMMPS run, (mean, standard error) from block averages after
+    `equil` steps, and its thermo rows; None if the run failed."""
+    text = lammps_input(args.plugin, fix, equil + steps, dt, thermo)
+    code, out = run_lammps(args, text, ranks, name)
+    if code != 0:
+        check(False, f"{name} on {ranks} rank(s) ran: {out[-2000:]}")
+        return None
+    rows = [r for r in thermo_rows(out) if r[0] > equil]
+    return [mean_and_error([r[c] for r in rows]) for c in (1, 2)]
 
 
 def equilibrium(args):
-    dt, equil, steps, thermo = args.dt, args.equilibrate, args.steps, 10
-    schemes = [("aboba", "aboba"), ("baoab", "baoab"), ("obabo", "obabo"),
-               ("S(x1) S(x0) S(x1) O", "s_x1_s_x0_s_x1_o"), ("vv", "vv")]
-    time = dt * steps
-    for scheme, ident in schemes:
-        ref = dpd_run(args, scheme, dt, time + dt * equil, args.dpd_runs)
-        for ranks in (1, 2):
-            text = lammps_input(args.plugin, plugin_fix(ident), equil + steps, dt, thermo)
-            code, out = run_lammps(args, text, ranks, f"eq-{ident}-{ranks}")
-            if code != 0:
-                check(False, f"{scheme} on {ranks} rank(s) ran: {out[-2000:]}")
+    """Each scheme in the plugin against `dpd run` of the same scheme on the same scene, and,
+    so that the agreement shows that the same scheme ran, against `dpd run` of every other
+    scheme: those must differ by more than SIGMAS combined errors in T_K (their biases at this
+    dt differ by scheme). Then the plugin's VV against LAMMPS's own pair dpd + fix nve."""
+    dt, steps, thermo = args.dt, args.steps, 5
+    equil = steps // 4    # dpd run averages the last 80 % of its run: the same window
+    time = dt * (equil + steps)
+    refs = {ident: dpd_run(args, SCHEMES[ident], dt, time, args.dpd_runs) for ident in args.scheme}
+    for ident in args.scheme:
+        for ranks in args.ranks:
+            mine = lammps_averages(args, plugin_fix(ident), ranks, f"eq-{ident}", dt, equil, steps, thermo)
+            if mine is None:
                 continue
-            rows = [r for r in thermo_rows(out) if r[0] > equil]
-            for col, key in ((1, "kinetic_temperature"), (2, "pressure")):
-                mine = mean_and_error([r[col] for r in rows])
-                theirs = ref[key]
-                check(agree(mine, theirs),
-                      f"{scheme} dt={dt} {ranks} rank(s): {key} plugin {mine[0]:.4f} +- {mine[1]:.4f}"
-                      f" vs dpd run {theirs[0]:.4f} +- {theirs[1]:.4f}")
-    # The plugin's VV against LAMMPS's own velocity Verlet DPD (pair dpd + fix nve).
-    for ranks in (1, 2):
-        results = []
-        for name, fix in (("plugin", plugin_fix("vv")), ("native", native_vv())):
-            text = lammps_input(args.plugin, fix, equil + steps, dt, thermo)
-            code, out = run_lammps(args, text, ranks, f"vv-{name}-{ranks}")
-            rows = [r for r in thermo_rows(out) if r[0] > equil]
-            results.append([mean_and_error([r[c] for r in rows]) for c in (1, 2)] if code == 0 else None)
-        if None in results:
-            check(False, f"VV plugin and native on {ranks} rank(s) ran")
+            for k, key in enumerate(KEYS):
+                theirs = refs[ident][k]
+                check(agree(mine[k], theirs),
+                      f"{SCHEMES[ident]} dt={dt} {ranks} rank(s): {key} plugin {mine[k][0]:.4f} +- "
+                      f"{mine[k][1]:.4f} vs dpd run {theirs[0]:.4f} +- {theirs[1]:.4f} "
+                      f"({sigmas_apart(mine[k], theirs):.1f} sigma)")
+            for other in args.scheme:
+                if other != ident:
+                    z = sigmas_apart(mine[0], refs[other][0])
+                    check(z > SIGMAS, f"  ... and its T_K differs from dpd run {SCHEMES[other]} "
+                                      f"{refs[other][0][0]:.4f} by {z:.1f} sigma (> {SIGMAS:g})")
+    if not args.native:
+        return
+    for ranks in args.ranks:
+        # pair dpd tallies its dissipative and random forces in the virial (0.43 of pressure at
+        # dt = 0.1); `dpd run` and the fix by default do not: here the fix does too.
+        plugin = lammps_averages(args, plugin_fix("vv", virial=True), ranks, "vv-plugin", dt, equil, steps, thermo)
+        native = lammps_averages(args, native_vv(), ranks, "vv-native", dt, equil, steps, thermo)
+        if plugin is None or native is None:
             continue
-        for k, key in enumerate(("T_K", "pressure")):
-            a, b = results[0][k], results[1][k]
-            check(agree(a, b), f"VV {ranks} rank(s) {key}: plugin {a[0]:.4f} +- {a[1]:.4f} vs "
-                               f"pair dpd + fix nve {b[0]:.4f} +- {b[1]:.4f}")
+        for k, key in enumerate(KEYS):
+            a, b = plugin[k], native[k]
+            check(agree(a, b), f"VV dt={dt} {ranks} rank(s) {key}: plugin {a[0]:.4f} +- {a[1]:.4f} vs "
+                               f"pair dpd + fix nve {b[0]:.4f} +- {b[1]:.4f} ({sigmas_apart(a, b):.1f} sigma)")
+
+
+def shear_input(plugin, scheme, dt, steps, virial, seed=2024):
+    """The shear scene of scenes/shear.toml in LAMMPS: N = 500 at density 3 (one rank: the box
+    side 5.5 stays above 4 r_c + 2 skin = 4.8 even at the largest tilt fix deform reaches
+    before it flips the box, 0.5 L, where the faces are 5.5 / sqrt(1.25) = 4.9 apart), gamma
+    = 450, sheared by fix deform xy at kappa = 0.2 with remap v, started on the linear profile.
+    The pressure tensor uses the temperature with the streaming profile removed; with
+    `virial` the fix adds its pair impulses' stress (fix_modify virial yes)."""
+    side = box_side(500)
+    return f"""
+units lj
+atom_style atomic
+comm_modify vel yes
+region box prism 0 {side!r} 0 {side!r} 0 {side!r} 0 0 0
+create_box 1 box
+create_atoms 1 random 500 {seed} NULL
+mass 1 1.0
+neighbor {SKIN} bin
+neigh_modify every 1 delay 0 check yes
+timestep {dt!r}
+velocity all create 1.0 {seed + 1} mom yes dist gaussian
+velocity all ramp vx 0 {0.2 * side!r} y 0 {side!r} sum yes
+plugin load {plugin}
+pair_style dpd 1.0 1.0 999
+pair_coeff 1 1 25.0 0.0 1.0
+fix 1 all dpd/split {scheme} 1.0 450 1.0 4321
+fix_modify 1 virial {"yes" if virial else "no"}
+fix 2 all deform 1 xy erate 0.2 remap v
+compute tdef all temp/deform
+compute pdef all pressure tdef
+thermo_style custom step temp c_tdef press c_pdef[4] xy
+thermo_modify temp tdef press pdef norm no format float %.10g
+thermo 10
+run {steps}
+"""
+
+
+def shear(args):
+    """Shear viscosity eta = -<P_xy> / kappa of the plugin's ABOBA under fix deform ... remap v
+    (one rank) against `dpd run --scene scenes/shear.toml` at the same dt, within SIGMAS
+    combined block errors; and without the fix's virial, to show that the pair impulses'
+    stress is what the agreement needs."""
+    dt, time = 0.01, args.shear_time
+    steps, skip = round(time / dt), round(0.2 * time / dt)
+    cmd = [args.dpd, "run", "--scene", os.path.join(os.path.dirname(__file__), "..", "..", "scenes", "shear.toml"),
+           "--scheme", "aboba", "--dt", str(dt), "--time", str(time), "--json"]
+    out = subprocess.run(cmd, capture_output=True, text=True, timeout=3600)
+    if out.returncode != 0:
+        raise SystemExit(f"{' '.join(cmd)} failed: {out.stderr}")
+    ref = json.loads(out.stdout)["results"][0]["viscosity"]
+    theirs = (ref["shear_viscosity"], ref["shear_viscosity_error"])
+    for virial in (True, False):
+        code, text = run_lammps(args, shear_input(args.plugin, "aboba", dt, steps, virial), 1,
+                                f"shear-virial-{'yes' if virial else 'no'}")
+        if code != 0:
+            check(False, f"shear run ran: {text[-2000:]}")
+            continue
+        rows = [r for r in thermo_rows(text) if r[0] > skip]
+        temp = mean_and_error([r[2] for r in rows], blocks=10)
+        eta = mean_and_error([-r[4] / 0.2 for r in rows], blocks=10)
+        what = (f"shear aboba dt={dt}, {time:g} time units, fix_modify virial {'yes' if virial else 'no'}: "
+                f"eta {eta[0]:.3f} +- {eta[1]:.3f} (T_K {temp[0]:.4f}) vs dpd run {theirs[0]:.3f} +- {theirs[1]:.3f} "
+                f"({sigmas_apart(eta, theirs):.1f} sigma)")
+        check(agree(eta, theirs) if virial else not agree(eta, theirs), what)
 
 
 def repeat_and_momentum(args):
+    """ABOBA and VV, 200 steps: two runs on 1 and on 2 ranks repeat bitwise; the total momentum
+    of those runs (and of one on 4 ranks) stays at round-off."""
     dt, steps = args.dt, 200
     for ident in ("aboba", "vv"):
         text = lammps_input(args.plugin, plugin_fix(ident), steps, dt, 20)
-        for ranks in (1, 2):
-            outs = [run_lammps(args, text, ranks, f"rep-{ident}-{ranks}-{k}") for k in range(2)]
-            rows = [thermo_rows(o) for _, o in outs]
-            check(outs[0][0] == 0 and rows[0] and rows[0] == rows[1],
-                  f"{ident} on {ranks} rank(s) repeats bitwise ({len(rows[0])} thermo rows of 17 digits)")
         for ranks in (1, 2, 4):
-            code, out = run_lammps(args, text, ranks, f"mom-{ident}-{ranks}")
-            rows = thermo_rows(out)
+            outs = [run_lammps(args, text, ranks, f"rep-{ident}-{ranks}-{k}") for k in range(1 if ranks == 4 else 2)]
+            rows = [thermo_rows(o) for _, o in outs]
+            if len(outs) == 2:
+                check(outs[0][0] == 0 and rows[0] and rows[0] == rows[1],
+                      f"{ident} on {ranks} rank(s) repeats bitwise ({len(rows[0])} thermo rows of 17 digits)")
             # Round-off: each of ~10^7 pair updates changes the total by ~1e-16 |p|, at random;
             # a lost ghost update changes it by ~0.1 at once. Tolerance 1e-9 per unit of
             # sqrt(N m k_B T) ~ 55.
-            worst = max((math.sqrt(r[3] ** 2 + r[4] ** 2 + r[5] ** 2) for r in rows), default=float("inf"))
-            check(code == 0 and worst < 1e-9 * math.sqrt(N),
+            worst = max((math.sqrt(r[3] ** 2 + r[4] ** 2 + r[5] ** 2) for r in rows[0]), default=float("inf"))
+            check(outs[0][0] == 0 and worst < 1e-9 * math.sqrt(N),
                   f"{ident} on {ranks} rank(s): total momentum stays below {1e-9 * math.sqrt(N):.1e} (max {worst:.2e})")
 
 
@@ -222,14 +324,26 @@ def main():
     p.add_argument("--plugin", required=True)
     p.add_argument("--dpd", required=True)
     p.add_argument("--work", required=True)
-    p.add_argument("--dt", type=float, default=0.08)
-    p.add_argument("--equilibrate", type=int, default=200)
-    p.add_argument("--steps", type=int, default=2000)
-    p.add_argument("--dpd-runs", type=int, default=4)
-    p.add_argument("--only", choices=["equilibrium", "repeat", "bad"], action="append")
+    # At dt = 0.1 the T_K biases of the five schemes are at least 0.05 apart (dpd run: ABOBA
+    # 1.263, VV 1.339, BAOAB 0.887, OBABO 1.116, S(x1) S(x0) S(x1) O 1.055); at 0.08 ABOBA and
+    # VV nearly coincide (1.125 and 1.13).
+    p.add_argument("--dt", type=float, default=0.1)
+    p.add_argument("--steps", type=int, default=2000,
+                   help="equilibrium: averaged steps, after steps/4 of equilibration")
+    p.add_argument("--dpd-runs", type=int, default=8)
+    p.add_argument("--scheme", choices=list(SCHEMES), action="append",
+                   help="equilibrium: the schemes to compare (default all)")
+    p.add_argument("--ranks", type=int, action="append", help="equilibrium: rank counts (default 1 and 2)")
+    p.add_argument("--native", action=argparse.BooleanOptionalAction, default=True,
+                   help="equilibrium: also the plugin's VV against pair dpd + fix nve")
+    p.add_argument("--shear-time", type=float, default=400.0, help="shear: time units per run")
+    p.add_argument("--only", choices=["equilibrium", "repeat", "bad", "shear"], action="append")
     args = p.parse_args()
+    args.scheme = args.scheme or list(SCHEMES)
+    args.ranks = args.ranks or [1, 2]
     os.makedirs(args.work, exist_ok=True)
-    parts = {"bad": bad_input, "repeat": repeat_and_momentum, "equilibrium": equilibrium}
+    parts = {"bad": bad_input, "repeat": repeat_and_momentum, "equilibrium": equilibrium,
+             "shear": shear}
     for name in args.only or ["bad", "repeat", "equilibrium"]:
         parts[name](args)
     if FAILURES:

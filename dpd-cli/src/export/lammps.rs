@@ -59,7 +59,9 @@ pub struct Exported {
     pub consistent: bool,
 }
 
-/// The letters the plugin runs.
+/// The letters the plugin runs: all but T, whose exact per-pair update (algorithms.md section
+/// 2) needs the pair's conservative force, while LAMMPS computes forces per atom, summed over
+/// any pair, bond and kspace styles.
 fn supported(flow: Flow) -> bool {
     !matches!(flow, Flow::T)
 }
@@ -100,7 +102,9 @@ pub fn resolve(name: &str, allow_inconsistent: bool) -> Result<Exported, String>
     if let Some(stage) = program.stages.iter().find(|s| !supported(s.flow)) {
         return Err(format!(
             "scheme '{name}' = {program} has a {:?} stage; the LAMMPS plugin runs A, B, O, Ob \
-             and F stages",
+             and F stages (T's exact pair update needs each pair's conservative force, and \
+             LAMMPS sums forces per atom over all its force styles, so no pair force exists to \
+             use)",
             stage.flow
         ));
     }
@@ -256,7 +260,10 @@ mod tests {
         let hand = resolve("setd", false).unwrap_err();
         assert!(hand.contains("hand-written"), "{hand}");
         let trotter = resolve("sas", false).unwrap_err();
-        assert!(trotter.contains("T stage"), "{trotter}");
+        assert!(
+            trotter.contains("T stage") && trotter.contains("conservative force"),
+            "{trotter}"
+        );
         let inconsistent = resolve("A B(1/2) O", false).unwrap_err();
         assert!(
             inconsistent.contains("--allow-inconsistent"),

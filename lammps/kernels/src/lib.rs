@@ -102,8 +102,9 @@ impl Kernels {
     }
 
     /// Apply the sweep `flow` of step length `h` to `pairs` in the given order (see the crate
-    /// documentation); `x`, `v` hold `3 n` doubles, `inv_mass` and `tag` `n` values. Returns a
-    /// `DPD_LAMMPS_*` status; on an error no velocity has changed.
+    /// documentation); `x`, `v` hold `3 n` doubles, `inv_mass` and `tag` `n` values. With
+    /// `virial`, adds each pair's `r_ij (x) J_ij` to it ([`add_virial`]), `J_ij` the impulse on
+    /// atom i. Returns a `DPD_LAMMPS_*` status; on an error no velocity has changed.
     #[allow(clippy::too_many_arguments)]
     pub fn sweep(
         &self,
@@ -116,6 +117,7 @@ impl Kernels {
         v: &mut [f64],
         inv_mass: &[f64],
         tag: &[c_int],
+        mut virial: Option<&mut [f64; 6]>,
     ) -> c_int {
         let status = Self::check(pairs, x, v, inv_mass, tag);
         if status != DPD_LAMMPS_OK || self.params.gamma() == 0.0 {
@@ -137,6 +139,9 @@ impl Kernels {
                 v[3 * i + k] += impulse * e[k] * mi;
                 v[3 * j + k] -= impulse * e[k] * mj;
             }
+            if let Some(virial) = virial.as_deref_mut() {
+                add_virial(virial, x, i, j, impulse, e);
+            }
         };
         if reverse {
             pairs.iter().rev().for_each(&mut apply);
@@ -149,7 +154,8 @@ impl Kernels {
     /// Add the dissipative and random pair forces of the full DPD force (the F letter, without
     /// its conservative part, which the engine computes) at velocities `v` to `f` (`3 n`
     /// doubles): `(-gamma w_R^2 u + sigma w_R z / sqrt(dt)) e_ij` on i, the opposite on j,
-    /// with the normals of `key`. Returns a `DPD_LAMMPS_*` status; on an error `f` is unchanged.
+    /// with the normals of `key`. With `virial`, adds each pair's `r_ij (x) F_ij` to it
+    /// ([`add_virial`]). Returns a `DPD_LAMMPS_*` status; on an error `f` is unchanged.
     #[allow(clippy::too_many_arguments)]
     pub fn dissipative_random(
         &self,
@@ -161,6 +167,7 @@ impl Kernels {
         inv_mass: &[f64],
         tag: &[c_int],
         f: &mut [f64],
+        mut virial: Option<&mut [f64; 6]>,
     ) -> c_int {
         let status = Self::check(pairs, x, v, inv_mass, tag);
         if status != DPD_LAMMPS_OK {
@@ -189,8 +196,24 @@ impl Kernels {
                 f[3 * i + k] += force * e[k];
                 f[3 * j + k] -= force * e[k];
             }
+            if let Some(virial) = virial.as_deref_mut() {
+                add_virial(virial, x, i, j, force, e);
+            }
         }
         DPD_LAMMPS_OK
+    }
+}
+
+/// Add the virial of the pair force (or impulse) `magnitude e` on atom i, `-magnitude e` on
+/// atom j, to `virial`: `r_ij (x) magnitude e` with `r_ij = x_i - x_j`, in LAMMPS's order
+/// xx, yy, zz, xy, xz, yz.
+fn add_virial(virial: &mut [f64; 6], x: &[f64], i: usize, j: usize, magnitude: f64, e: [f64; 3]) {
+    let r: [f64; 3] = std::array::from_fn(|k| x[3 * i + k] - x[3 * j + k]);
+    for (slot, (a, b)) in [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)]
+        .into_iter()
+        .enumerate()
+    {
+        virial[slot] += r[a] * magnitude * e[b];
     }
 }
 
@@ -237,68 +260,105 @@ pub unsafe extern "C" fn dpd_lammps_free(kernels: *mut Kernels) {
     }
 }
 
-/// Positions, velocities (or forces: the array written), inverse masses and tags.
-type Atoms<'a> = (&'a [f64], &'a mut [f64], &'a [f64], &'a [c_int]);
-
-/// The per-atom arrays of a call as slices: `x` and `v` of `3 natoms` doubles, `inv_mass` and
-/// `tag` of `natoms`; `None` if one is null while `natoms > 0`.
-///
-/// # Safety
-/// Each non-null pointer points to that many valid values; `v` is writable and overlaps none
-/// of the others, and the slices are not used beyond the call that made them.
-unsafe fn atoms<'a>(
-    natoms: usize,
-    x: *const f64,
-    v: *mut f64,
-    inv_mass: *const f64,
-    tag: *const c_int,
-) -> Option<Atoms<'a>> {
-    if natoms == 0 {
-        return Some((&[], &mut [], &[], &[]));
-    }
-    if x.is_null() || v.is_null() || inv_mass.is_null() || tag.is_null() {
-        return None;
-    }
-    // SAFETY: the caller's contract.
-    unsafe {
-        Some((
-            std::slice::from_raw_parts(x, 3 * natoms),
-            std::slice::from_raw_parts_mut(v, 3 * natoms),
-            std::slice::from_raw_parts(inv_mass, natoms),
-            std::slice::from_raw_parts(tag, natoms),
-        ))
-    }
+/// The read-only arguments shared by the calls: the kernels, the noise key, the pair list,
+/// and per atom the positions (`3 natoms` doubles), inverse masses and tags.
+struct Call<'a> {
+    kernels: &'a Kernels,
+    key: (u64, u64, u8),
+    pairs: &'a [[c_int; 2]],
+    x: &'a [f64],
+    inv_mass: &'a [f64],
+    tag: &'a [c_int],
 }
 
-/// The pair list of a call: `npairs` pairs of atom indices; `None` if null while
-/// `npairs > 0`.
+/// `len` values at `p` as a slice; `None` if `p` is null while `len > 0`.
 ///
 /// # Safety
-/// A non-null `pairs` points to `2 npairs` valid ints, not changed during the call.
-unsafe fn pair_list<'a>(npairs: usize, pairs: *const c_int) -> Option<&'a [[c_int; 2]]> {
-    match (npairs, pairs.is_null()) {
+/// A non-null `p` points to `len` valid values, not written during the call that made the
+/// slice, and the slice is not used beyond that call.
+unsafe fn slice<'a, T>(p: *const T, len: usize) -> Option<&'a [T]> {
+    match (len, p.is_null()) {
         (0, _) => Some(&[]),
         (_, true) => None,
-        // SAFETY: the caller's contract; `[c_int; 2]` has the layout of two consecutive ints.
-        (n, false) => Some(unsafe { std::slice::from_raw_parts(pairs.cast(), n) }),
+        // SAFETY: the caller's contract.
+        (len, false) => Some(unsafe { std::slice::from_raw_parts(p, len) }),
     }
 }
 
-/// The random-number key of a call, `None` for a stream outside 0..=255.
-fn key(seed: u64, step: u64, stream: c_int) -> Option<(u64, u64, u8)> {
-    u8::try_from(stream).ok().map(|stream| (seed, step, stream))
+/// As [`slice`], writable.
+///
+/// # Safety
+/// As for [`slice`], and no other slice of the call overlaps it.
+unsafe fn slice_mut<'a, T>(p: *mut T, len: usize) -> Option<&'a mut [T]> {
+    match (len, p.is_null()) {
+        (0, _) => Some(&mut []),
+        (_, true) => None,
+        // SAFETY: the caller's contract.
+        (len, false) => Some(unsafe { std::slice::from_raw_parts_mut(p, len) }),
+    }
+}
+
+/// The optional virial accumulator of a call: null for none, else 6 writable doubles.
+///
+/// # Safety
+/// A non-null `virial` points to 6 writable doubles overlapping no other array of the call.
+unsafe fn virial_of<'a>(virial: *mut f64) -> Option<&'a mut [f64; 6]> {
+    // SAFETY: the caller's contract.
+    unsafe { virial.cast::<[f64; 6]>().as_mut() }
+}
+
+impl<'a> Call<'a> {
+    /// The shared arguments of a call, or the status of what is wrong: `DPD_LAMMPS_FLOW` for a
+    /// stream outside 0..=255, `DPD_LAMMPS_NULL` for a null pointer where values are needed.
+    ///
+    /// # Safety
+    /// `kernels` is null or comes from [`dpd_lammps_new`]; `pairs` points to `2 npairs` ints,
+    /// `x` to `3 natoms` doubles, `inv_mass` to `natoms` doubles and `tag` to `natoms` ints
+    /// (each may be null when its length is 0), none written during the call.
+    unsafe fn new(
+        kernels: *const Kernels,
+        (seed, step, stream): (u64, u64, c_int),
+        (npairs, pairs): (usize, *const c_int),
+        (natoms, x, inv_mass, tag): (usize, *const f64, *const f64, *const c_int),
+    ) -> Result<Call<'a>, c_int> {
+        let stream = u8::try_from(stream).map_err(|_| DPD_LAMMPS_FLOW)?;
+        // SAFETY: the caller's contract; `[c_int; 2]` has the layout of two consecutive ints.
+        let (kernels, pairs, x, inv_mass, tag) = unsafe {
+            (
+                kernels.as_ref(),
+                slice(pairs.cast::<[c_int; 2]>(), npairs),
+                slice(x, 3 * natoms),
+                slice(inv_mass, natoms),
+                slice(tag, natoms),
+            )
+        };
+        match (kernels, pairs, x, inv_mass, tag) {
+            (Some(kernels), Some(pairs), Some(x), Some(inv_mass), Some(tag)) => Ok(Call {
+                kernels,
+                key: (seed, step, stream),
+                pairs,
+                x,
+                inv_mass,
+                tag,
+            }),
+            _ => Err(DPD_LAMMPS_NULL),
+        }
+    }
 }
 
 /// Apply the pairwise sweep `flow` (a [`SweepFlow`] code: 0 = O, 1 = Ob) of step length `h`
 /// to `npairs` pairs (`pairs[2k]`, `pairs[2k + 1]` are the atom indices of pair k), in order,
 /// or last to first when `reverse` is non-zero, with the noise of `(seed, step, stream)`.
-/// Returns `DPD_LAMMPS_OK`, or an error status with no velocity changed.
+/// `virial` is null, or 6 doubles to which each pair's `r_ij (x) J_ij` is added (xx, yy, zz,
+/// xy, xz, yz; `J_ij` the impulse on atom i). Returns `DPD_LAMMPS_OK`, or an error status
+/// with no velocity changed.
 ///
 /// # Safety
 /// `kernels` is null or comes from [`dpd_lammps_new`]; `pairs` points to `2 npairs` ints (may
-/// be null when `npairs == 0`); `x` and `v` to `3 natoms` doubles, `v` writable and not
-/// overlapping the others; `inv_mass` to `natoms` doubles and `tag` to `natoms` ints. Indices
-/// and tags are checked against `natoms`, not trusted.
+/// be null when `npairs == 0`); `x` and `v` to `3 natoms` doubles, `v` writable; `inv_mass` to
+/// `natoms` doubles and `tag` to `natoms` ints; `virial` is null or points to 6 writable
+/// doubles; the writable arrays overlap no other. Indices and tags are checked against
+/// `natoms`, not trusted.
 #[no_mangle]
 pub unsafe extern "C" fn dpd_lammps_sweep(
     kernels: *const Kernels,
@@ -315,33 +375,49 @@ pub unsafe extern "C" fn dpd_lammps_sweep(
     v: *mut f64,
     inv_mass: *const f64,
     tag: *const c_int,
+    virial: *mut f64,
 ) -> c_int {
     let flow = match flow {
         0 => SweepFlow::Ou,
         1 => SweepFlow::Bbk,
         _ => return DPD_LAMMPS_FLOW,
     };
-    let Some(key) = key(seed, step, stream) else {
-        return DPD_LAMMPS_FLOW;
-    };
-    // SAFETY: the contract: valid kernels, arrays of the stated lengths, `v` not aliased.
-    let (kernels, pairs, atoms) = unsafe {
+    // SAFETY: the contract.
+    let (call, v, virial) = unsafe {
         (
-            kernels.as_ref(),
-            pair_list(npairs, pairs),
-            atoms(natoms, x, v, inv_mass, tag),
+            Call::new(
+                kernels,
+                (seed, step, stream),
+                (npairs, pairs),
+                (natoms, x, inv_mass, tag),
+            ),
+            slice_mut(v, 3 * natoms),
+            virial_of(virial),
         )
     };
-    let (Some(kernels), Some(pairs), Some((x, v, inv_mass, tag))) = (kernels, pairs, atoms) else {
-        return DPD_LAMMPS_NULL;
-    };
-    kernels.sweep(flow, h, key, pairs, reverse != 0, x, v, inv_mass, tag)
+    match (call, v) {
+        (Ok(c), Some(v)) => c.kernels.sweep(
+            flow,
+            h,
+            c.key,
+            c.pairs,
+            reverse != 0,
+            c.x,
+            v,
+            c.inv_mass,
+            c.tag,
+            virial,
+        ),
+        (Err(status), _) => status,
+        (_, None) => DPD_LAMMPS_NULL,
+    }
 }
 
 /// Add the dissipative and random pair forces of the F letter (step `dt`) at velocities `v`
 /// to `f` (`3 natoms` doubles), over `npairs` pairs as in [`dpd_lammps_sweep`], with the
-/// noise of `(seed, step, stream)` ([`Kernels::dissipative_random`]). Returns
-/// `DPD_LAMMPS_OK`, or an error status with `f` unchanged.
+/// noise of `(seed, step, stream)` ([`Kernels::dissipative_random`]); `virial` as there, with
+/// the pair forces in place of the impulses. Returns `DPD_LAMMPS_OK`, or an error status with
+/// `f` unchanged.
 ///
 /// # Safety
 /// As for [`dpd_lammps_sweep`], with `v` read only and `f` pointing to `3 natoms` writable
@@ -361,31 +437,29 @@ pub unsafe extern "C" fn dpd_lammps_dissipative_random(
     inv_mass: *const f64,
     tag: *const c_int,
     f: *mut f64,
+    virial: *mut f64,
 ) -> c_int {
-    let Some(key) = key(seed, step, stream) else {
-        return DPD_LAMMPS_FLOW;
-    };
-    // SAFETY: the contract; `f` takes the place of the writable array, and `v` is only read.
-    let (kernels, pairs, atoms) = unsafe {
+    // SAFETY: the contract.
+    let (call, v, f, virial) = unsafe {
         (
-            kernels.as_ref(),
-            pair_list(npairs, pairs),
-            atoms(natoms, x, f, inv_mass, tag),
+            Call::new(
+                kernels,
+                (seed, step, stream),
+                (npairs, pairs),
+                (natoms, x, inv_mass, tag),
+            ),
+            slice(v, 3 * natoms),
+            slice_mut(f, 3 * natoms),
+            virial_of(virial),
         )
     };
-    let (Some(kernels), Some(pairs), Some((x, f, inv_mass, tag))) = (kernels, pairs, atoms) else {
-        return DPD_LAMMPS_NULL;
-    };
-    if natoms > 0 && v.is_null() {
-        return DPD_LAMMPS_NULL;
+    match (call, v, f) {
+        (Ok(c), Some(v), Some(f)) => c
+            .kernels
+            .dissipative_random(dt, c.key, c.pairs, c.x, v, c.inv_mass, c.tag, f, virial),
+        (Err(status), _, _) => status,
+        _ => DPD_LAMMPS_NULL,
     }
-    // SAFETY: `v` points to `3 natoms` doubles (the contract), checked non-null when needed.
-    let v = if natoms == 0 {
-        &[][..]
-    } else {
-        unsafe { std::slice::from_raw_parts(v, 3 * natoms) }
-    };
-    kernels.dissipative_random(dt, key, pairs, x, v, inv_mass, tag, f)
 }
 
 #[cfg(test)]
@@ -419,6 +493,7 @@ mod tests {
         let (x, mut v, inv_mass, tag) = scene();
         let before = v.clone();
         let key = (42, 9, 2);
+        let mut virial = [0.0; 6];
         let status = k.sweep(
             SweepFlow::Ou,
             h,
@@ -429,6 +504,7 @@ mod tests {
             &mut v,
             &inv_mass,
             &tag,
+            Some(&mut virial),
         );
         assert_eq!(status, DPD_LAMMPS_OK);
         let d: [f64; 3] = [-0.6, -0.2, 0.1];
@@ -441,6 +517,17 @@ mod tests {
         let expected =
             u(&before) * (-tau * h).exp() + (kbt * mu * (1.0 - (-2.0 * tau * h).exp())).sqrt() * z;
         assert!((u(&v) - expected).abs() < 1e-12, "{} vs {expected}", u(&v));
+        // The impulse on atom 0 is its momentum change; the virial is d (x) impulse.
+        let impulse: [f64; 3] = std::array::from_fn(|c| v[c] - before[c]);
+        for (slot, (a, b)) in [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)]
+            .into_iter()
+            .enumerate()
+        {
+            assert!(
+                (virial[slot] - d[a] * impulse[b]).abs() < 1e-12,
+                "{virial:?}"
+            );
+        }
         let (p0, p1) = (momentum(&before, &inv_mass), momentum(&v, &inv_mass));
         for c in 0..3 {
             assert!((p0[c] - p1[c]).abs() < 1e-14);
@@ -465,6 +552,7 @@ mod tests {
             &inv_mass,
             &tag,
             &mut f,
+            None,
         );
         assert_eq!(status, DPD_LAMMPS_OK);
         let d: [f64; 3] = [-0.6, -0.2, 0.1];
@@ -498,6 +586,7 @@ mod tests {
                 v,
                 &inv_mass,
                 tag,
+                None,
             )
         };
         assert_eq!(sweep(&mut v, &tag, &[[0, 3]]), DPD_LAMMPS_INDEX);
@@ -505,6 +594,65 @@ mod tests {
         tag[1] = -4;
         assert_eq!(sweep(&mut v, &tag, &[[0, 1]]), DPD_LAMMPS_TAG);
         assert_eq!(v, before);
+    }
+
+    /// The C entry points: a sweep through the ABI equals the Rust call; null arrays where
+    /// values are needed and streams outside 0..=255 are refused with no velocity changed.
+    #[test]
+    fn the_c_abi_checks_its_pointers_and_sweeps_like_the_rust_call() {
+        let k = Kernels::new(4.5, 1.0, 1.0, 2.0).unwrap();
+        let (x, v, inv_mass, tag) = scene();
+        let pairs: [c_int; 4] = [0, 1, 1, 2];
+        let mut expected = v.clone();
+        let status = k.sweep(
+            SweepFlow::Ou,
+            0.1,
+            (3, 4, 5),
+            &[[0, 1], [1, 2]],
+            false,
+            &x,
+            &mut expected,
+            &inv_mass,
+            &tag,
+            None,
+        );
+        assert_eq!(status, DPD_LAMMPS_OK);
+        let call = |stream: c_int, v: *mut f64, x: *const f64| {
+            // SAFETY: every non-null pointer points to arrays of the lengths given.
+            unsafe {
+                dpd_lammps_sweep(
+                    &k,
+                    0,
+                    0.1,
+                    3,
+                    4,
+                    stream,
+                    0,
+                    2,
+                    pairs.as_ptr(),
+                    3,
+                    x,
+                    v,
+                    inv_mass.as_ptr(),
+                    tag.as_ptr(),
+                    std::ptr::null_mut(),
+                )
+            }
+        };
+        let mut through_abi = v.clone();
+        assert_eq!(call(5, through_abi.as_mut_ptr(), x.as_ptr()), DPD_LAMMPS_OK);
+        assert_eq!(through_abi, expected);
+        let mut untouched = v.clone();
+        assert_eq!(
+            call(256, untouched.as_mut_ptr(), x.as_ptr()),
+            DPD_LAMMPS_FLOW
+        );
+        assert_eq!(call(5, std::ptr::null_mut(), x.as_ptr()), DPD_LAMMPS_NULL);
+        assert_eq!(
+            call(5, untouched.as_mut_ptr(), std::ptr::null()),
+            DPD_LAMMPS_NULL
+        );
+        assert_eq!(untouched, v);
     }
 
     #[test]
