@@ -3,9 +3,10 @@
 use crate::boundary::LeesEdwards;
 use crate::error::BlowUp;
 use crate::observe::ImpulseVirial;
+use crate::parallel::on_all_threads;
 use crate::scheme::Scheme;
 use crate::stamp::Stamp;
-use crate::system::{on_all_threads, System};
+use crate::system::System;
 use crate::{Tensor, Vec3};
 use rayon::prelude::*;
 

@@ -28,6 +28,7 @@ mod lanes;
 pub mod neighbour;
 pub mod observe;
 pub mod pairs;
+mod parallel;
 pub mod params;
 pub mod potential;
 pub mod reference;

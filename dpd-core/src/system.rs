@@ -6,6 +6,7 @@ use crate::force;
 use crate::neighbour::VerletList;
 use crate::observe::ImpulseVirial;
 use crate::pairs::{Bound, PairTable, Run};
+use crate::parallel::on_all_threads;
 use crate::params::Params;
 use crate::stamp::{Generation, Stamp};
 use crate::walls::{FrozenWalls, Walls};
@@ -652,16 +653,6 @@ impl System {
             && self.walls.is_none()
             && self.impulses.is_none()
     }
-}
-
-/// Below this many particles the per-particle loops (permutations, binning, drifts, kicks, the
-/// blow-up guard) run on one thread: splitting them costs more than it saves.
-const PARALLEL_MIN_PARTICLES: usize = 16_384;
-
-/// Whether a per-particle loop over `n` particles runs on all threads: only for large systems,
-/// and only when the pool has more than one.
-pub(crate) fn on_all_threads(n: usize) -> bool {
-    n >= PARALLEL_MIN_PARTICLES && rayon::current_num_threads() > 1
 }
 
 /// `v[k] <- v[order[k]]`.

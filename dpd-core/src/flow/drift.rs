@@ -1,4 +1,5 @@
-use crate::system::{on_all_threads, System};
+use crate::parallel::on_all_threads;
+use crate::system::System;
 use crate::Vec3;
 use rayon::prelude::*;
 

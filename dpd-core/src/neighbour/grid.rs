@@ -4,7 +4,7 @@
 use super::CellGrid;
 use crate::boundary::PeriodicBox;
 use crate::disjoint::Disjoint;
-use crate::system::on_all_threads;
+use crate::parallel::on_all_threads;
 use crate::Vec3;
 use rayon::prelude::*;
 use std::ops::Range;

@@ -11,7 +11,7 @@
 //! branch-free loop gathers the hits, and only the hits reach the caller. The sweep runs these
 //! loops in code compiled with AVX2 where the CPU has it (`crate::avx2`).
 
-use crate::system::on_all_threads;
+use crate::parallel::on_all_threads;
 use crate::Vec3;
 use rayon::prelude::*;
 use std::cell::RefCell;
