@@ -276,7 +276,15 @@ impl Measurements {
                 .map(|r| {
                     let e = r.critical_error(sweep.observable);
                     let s = stderr_of_error(r, sweep.observable, self.scene.kbt, base_eta);
-                    (r.dt, (e + shift * s.unwrap_or(f64::NAN)).max(1e-12))
+                    // A blow-up (infinite error) stays one, and an unshifted curve needs no
+                    // error bar: `f64::max` would turn the NaN of `inf + 0 * NaN` into the
+                    // floor and a blown-up point into a tiny error.
+                    let v = if shift == 0.0 || e.is_infinite() {
+                        e
+                    } else {
+                        e + shift * s.unwrap_or(f64::NAN)
+                    };
+                    (r.dt, if v.is_nan() { v } else { v.max(1e-12) })
                 })
                 .collect()
         };
