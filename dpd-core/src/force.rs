@@ -53,7 +53,7 @@ impl<'a> Conservative<'a> {
     #[inline(always)]
     pub(crate) unsafe fn pair(&self, pair: &Pair, fi: &mut Vec3, fj: &mut Vec3) {
         // SAFETY: the caller's contract.
-        let soft = unsafe { self.a.of_pair(self.kind, pair.i, pair.j) };
+        let soft = self.a.soft(|| unsafe { self.kind.get_two(pair.i, pair.j) });
         let f = soft.force(pair.w) * pair.e;
         *fi += f;
         *fj -= f;
@@ -238,7 +238,11 @@ impl<'a> Full<'a> {
                 dvx,
             )
         };
-        let conservative = unsafe { self.a.of_pair(self.kind, i, j) }.force(pair.w);
+        // SAFETY: the caller's contract.
+        let conservative = self
+            .a
+            .soft(|| unsafe { self.kind.get_two(i, j) })
+            .force(pair.w);
         let f = full_pair_force(conservative, self.gamma, self.noise, pair.wr, u, z);
         let fe = f * pair.e;
         let (fi, fj) = two.split();

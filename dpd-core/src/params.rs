@@ -2,7 +2,6 @@
 //! construction.
 
 use crate::error::{non_negative, positive, ParamError};
-use crate::pairs::ByPair;
 use crate::potential::Soft;
 use serde::{Deserialize, Serialize};
 
@@ -210,18 +209,15 @@ impl Repulsion<'_> {
         self.a[ti as usize * self.types + tj as usize]
     }
 
-    /// The soft repulsion between particles `i` and `j` of a pair table, their types in `kind`. With
-    /// one type the types are not read: a pair loop then loads two values fewer per pair.
-    ///
-    /// # Safety
-    /// As for [`ByPair::get`], for `i` and `j`.
+    /// The soft repulsion between two particles, `types` giving their types. With one type
+    /// `types` is not called: a pair loop then loads two values fewer per pair.
     #[inline(always)]
-    pub(crate) unsafe fn of_pair(self, kind: ByPair<'_, u16>, i: u32, j: u32) -> Soft {
+    pub(crate) fn soft(self, types: impl FnOnce() -> (u16, u16)) -> Soft {
         let a = if self.types == 1 {
             self.a[0]
         } else {
-            // SAFETY: the caller's contract.
-            unsafe { self.of(kind.get(i), kind.get(j)) }
+            let (ti, tj) = types();
+            self.of(ti, tj)
         };
         Soft::new(a, self.rc)
     }

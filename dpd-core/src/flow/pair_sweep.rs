@@ -39,7 +39,8 @@ impl Particles<'_> {
     #[inline(always)]
     unsafe fn soft(self, pair: &Pair) -> Soft {
         // SAFETY: the caller's contract.
-        unsafe { self.repulsion.of_pair(self.kind, pair.i, pair.j) }
+        self.repulsion
+            .soft(|| unsafe { self.kind.get_two(pair.i, pair.j) })
     }
 }
 

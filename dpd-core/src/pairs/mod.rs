@@ -227,4 +227,14 @@ impl<T: Copy> ByPair<'_, T> {
         // SAFETY: in bounds, the caller's contract.
         unsafe { *self.0.get_unchecked(i as usize) }
     }
+
+    /// The entries of particles `i` and `j`, without bounds checks.
+    ///
+    /// # Safety
+    /// As for [`ByPair::get`], for `i` and `j`.
+    #[inline(always)]
+    pub(crate) unsafe fn get_two(self, i: u32, j: u32) -> (T, T) {
+        // SAFETY: the caller's contract.
+        unsafe { (self.get(i), self.get(j)) }
+    }
 }
