@@ -2,15 +2,20 @@
 # Every test the project has: formatting, lints, the Rust test suite, then each
 # scripts/test-<topic>.sh (LAMMPS plugin, Python module, trajectory readers, ...), which install
 # what they need into virtual environments under ${DPD_TEST_CACHE:-$HOME/.cache/dpd-test}.
+# Each phase prints its wall time (CI must stay under 20 minutes).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cargo fmt --all -- --check
-cargo clippy --workspace --all-targets --quiet -- -D warnings
-cargo test --workspace
+phase() {
+    echo "== $*"
+    local start=$SECONDS
+    "$@"
+    echo "== $* passed in $((SECONDS - start)) s"
+}
+phase cargo fmt --all -- --check
+phase cargo clippy --workspace --all-targets --quiet -- -D warnings
+phase cargo test --workspace
 for script in scripts/test-*.sh; do
     [ "$script" = scripts/test-all.sh ] && continue
-    echo "== $script"
-    start=$SECONDS
-    bash "$script"
-    echo "== $script passed in $((SECONDS - start)) s"
+    phase bash "$script"
 done
+echo "== all passed in $SECONDS s"
