@@ -23,6 +23,8 @@ run=(run --n 300 --time 2 --dt 0.05 --seed 3)
 for file in t.gsd t.xyz t.lammpstrj; do
     "$dpd" "${run[@]}" --trajectory "$file" --every 0.5 >/dev/null 2>&1
 done
+# The same run with a frame every step, to check the images against each step's displacement.
+"$dpd" "${run[@]}" --trajectory steps.gsd --every 0.05 >/dev/null 2>&1
 # Frame 2 (step 20) as the start of a 10-step run whose first frame must be that state.
 "$dpd" run --n 300 --time 0.5 --dt 0.05 --init t.gsd:2 --trajectory init.gsd --every 0.5 \
     >/dev/null 2>&1
@@ -79,6 +81,24 @@ for name, fmt in [("t.xyz", "extxyz"), ("t.lammpstrj", "lammps-dump-text")]:
         centred = a.get_positions() - f.configuration.box[:3] / 2
         assert np.abs(centred - f.particles.position).max() < 1e-5, name
 
+# Images: between two steps a particle moves much less than half an edge, so its displacement
+# is the minimum image of the change of its wrapped position; the images must turn the wrapped
+# change into that displacement, and the 10-step files must hold the same images.
+with gsd.hoomd.open("steps.gsd") as t:
+    steps = list(t)
+assert len(steps) == 41, len(steps)
+edge = steps[0].configuration.box[:3]
+crossed = 0
+for a, b in zip(steps, steps[1:]):
+    change = b.particles.position - a.particles.position
+    nearest = change - edge * np.round(change / edge)
+    unwrapped = change + (b.particles.image - a.particles.image) * edge
+    assert np.abs(unwrapped - nearest).max() < 1e-4, a.configuration.step
+    crossed += np.abs(b.particles.image - a.particles.image).sum()
+assert crossed > 0, "no particle crossed a face: the check checked nothing"
+for f in frames:
+    assert (f.particles.image == steps[f.configuration.step].particles.image).all()
+
 with gsd.hoomd.open("init.gsd") as t:
     start = t[0]
 assert start.configuration.step == 0
@@ -91,5 +111,6 @@ with gsd.hoomd.open("killed.gsd") as t:
     for f in t:
         assert f.particles.N == 1500 and np.isfinite(f.particles.position).all()
 print(f"trajectory readers: 5 frames each of GSD, extended XYZ and LAMMPS dump agree; "
-      f"--init continues frame 2; the killed run's {n} frames read back")
+      f"images follow {crossed} face crossings in 40 steps; --init continues frame 2; "
+      f"the killed run's {n} frames read back")
 PY

@@ -7,6 +7,7 @@
 pub mod aggregate;
 pub mod critical;
 pub mod flows;
+pub mod images;
 pub mod paper;
 pub mod plot;
 pub mod report;

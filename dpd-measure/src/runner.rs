@@ -133,12 +133,12 @@ pub fn run(
             interrupted = true;
             break;
         }
-        // Up to the next sample (a multiple of `every`), the end, or the next frame.
+        // Up to the next sample (a multiple of `every`), the end, or the trajectory's next stop.
         let next_sample = (sys.step() / every + 1) * every;
-        let next_frame = trajectory
+        let next_stop = trajectory
             .as_ref()
-            .map_or(u64::MAX, |t| t.next_frame(sys.step()));
-        let chunk = next_sample.min(steps).min(next_frame) - sys.step();
+            .map_or(u64::MAX, |t| t.next_stop(sys.step()));
+        let chunk = next_sample.min(steps).min(next_stop) - sys.step();
         let (before, from) = (sys.counters(), sys.step());
         let start = Instant::now();
         let outcome = sys.advance(scheme, chunk);

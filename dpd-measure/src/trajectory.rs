@@ -2,6 +2,7 @@
 //! T`) and runs started from a frame of a GSD file (`init = "FILE.gsd[:frame]"`, `--init`).
 //! The files themselves are written and read by the `dpd-trajectory` crate.
 
+use crate::images::Images;
 use dpd_core::observe::thermo;
 use dpd_core::{ParamError, System, Vec3};
 use dpd_trajectory::gsd::GsdReader;
@@ -17,6 +18,9 @@ pub enum Field {
     Velocity,
     /// Masses.
     Mass,
+    /// Periodic images (crossings of each pair of box faces since the run's start; followed
+    /// after every step, see [`Images`]). Not under Lees-Edwards boundaries.
+    Image,
     /// The frame's k_B T_K, T_C, potential energy per particle and virial pressure (GSD
     /// `log/...`, extended-XYZ comment keys; not in LAMMPS dumps).
     Observables,
@@ -32,13 +36,9 @@ pub struct TrajectorySpec {
     /// Time between frames (rounded to whole steps, at least 1); the first frame is the
     /// initial state.
     pub every: f64,
-    /// Default: all of them.
-    #[serde(default = "all_fields")]
-    pub fields: Vec<Field>,
-}
-
-fn all_fields() -> Vec<Field> {
-    vec![Field::Velocity, Field::Mass, Field::Observables]
+    /// Default (`None`): all of them, but images under Lees-Edwards boundaries.
+    #[serde(default)]
+    pub fields: Option<Vec<Field>>,
 }
 
 /// The observables a frame logs, in the order of [`frame`]'s values.
@@ -54,7 +54,7 @@ impl TrajectorySpec {
         TrajectorySpec {
             file,
             every,
-            fields: all_fields(),
+            fields: None,
         }
     }
 
@@ -94,10 +94,13 @@ pub struct Recorder {
     fields: Vec<Field>,
     every_steps: u64,
     path: PathBuf,
+    /// With the `image` field: the images, which need the positions after every step.
+    images: Option<Images>,
 }
 
 impl Recorder {
-    /// Create the file of run `seed` and write the initial state as frame 0.
+    /// Create the file of run `seed` and write the initial state as frame 0. Images count from
+    /// this state (also when it comes from `init`).
     pub fn start(
         spec: &TrajectorySpec,
         dt: f64,
@@ -105,8 +108,22 @@ impl Recorder {
         runs: u64,
         sys: &mut System,
     ) -> Result<Recorder, ParamError> {
+        let fields = match &spec.fields {
+            Some(fields) => fields.clone(),
+            None => {
+                let mut all = vec![Field::Velocity, Field::Mass, Field::Observables];
+                if sys.shear().is_none() {
+                    all.push(Field::Image);
+                }
+                all
+            }
+        };
+        let images = match fields.contains(&Field::Image) {
+            true => Some(Images::start(sys)?),
+            false => None,
+        };
         let path = spec.path(seed, runs);
-        let names: &[&str] = match spec.fields.contains(&Field::Observables) {
+        let names: &[&str] = match fields.contains(&Field::Observables) {
             true => &LOG_NAMES,
             false => &[],
         };
@@ -114,21 +131,30 @@ impl Recorder {
             .map_err(|e| ParamError::new("trajectory.file", path.display(), e.to_string()))?;
         let mut r = Recorder {
             writer,
-            fields: spec.fields.clone(),
+            fields,
             every_steps: spec.every_steps(dt),
             path,
+            images,
         };
         r.record(sys)?;
         Ok(r)
     }
 
-    /// The next step at which a frame is due after `step`.
-    pub fn next_frame(&self, step: u64) -> u64 {
-        (step / self.every_steps + 1) * self.every_steps
+    /// The next step after `step` at which the recorder needs the state: the next frame, or
+    /// the next step when it follows images.
+    pub fn next_stop(&self, step: u64) -> u64 {
+        match self.images {
+            Some(_) => step + 1,
+            None => (step / self.every_steps + 1) * self.every_steps,
+        }
     }
 
-    /// Append a frame if one is due at the system's step.
+    /// Follow the images over the steps since the last stop (one step: see [`Self::next_stop`])
+    /// and append a frame if one is due at the system's step.
     pub fn record_if_due(&mut self, sys: &mut System) -> Result<(), ParamError> {
+        if let Some(images) = &mut self.images {
+            images.update(sys);
+        }
         if sys.step().is_multiple_of(self.every_steps) {
             self.record(sys)?;
         }
@@ -136,7 +162,8 @@ impl Recorder {
     }
 
     fn record(&mut self, sys: &mut System) -> Result<(), ParamError> {
-        let f = frame(sys, &self.fields);
+        let mut f = frame(sys, &self.fields);
+        f.images = self.images.as_ref().map(|i| i.by_id().to_vec());
         self.writer
             .append(&f)
             .map_err(|e| ParamError::new("trajectory.file", self.path.display(), e.to_string()))
