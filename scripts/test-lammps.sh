@@ -7,9 +7,11 @@
 # (400 averaged steps) against `dpd run` of the same scheme, and against every other scheme's
 # (which must differ); and the shear viscosity under fix deform ... remap v over 100 time units
 # against `dpd run --scene scenes/shear.toml` (and without the fix's virial, which must
-# differ). The full evidence (1 and 2 ranks, 2000 steps, the plugin's VV against pair dpd +
-# fix nve; shear over 400 time units) is run by hand: `bash scripts/test-lammps.sh --only
-# equilibrium` and `--only shear` (numbers in docs/lammps.md).
+# differ); and pair_style dpd/soft against pair dpd at zero friction on a two-type mixture
+# (forces, energy, per-atom tallies, 1 and 2 ranks). The full evidence (1 and 2 ranks, 2000
+# steps, the plugin's VV against pair dpd + fix nve; shear over 400 time units) is run by hand:
+# `bash scripts/test-lammps.sh --only equilibrium` and `--only shear` (numbers in
+# docs/lammps.md).
 #
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -27,6 +29,6 @@ plugin=$("$dpd" export lammps aboba baoab obabo "S(x1) S(x0) S(x1) O" vv \
     --out "$cache/plugin" --build --python "$venv/bin/python" | tail -n 1)
 echo "built $plugin"
 [ $# -eq 0 ] && set -- --only=bad --only=repeat --only=equilibrium --ranks=2 --steps=400 --no-native \
-    --only=shear --shear-time=100
+    --only=shear --shear-time=100 --only=soft
 "$venv/bin/python" scripts/lammps/check.py --lmp "$venv/bin/lmp" --mpirun "$venv/bin/mpirun" \
     --plugin "$plugin" --dpd "$dpd" --work "$cache/runs" "$@"

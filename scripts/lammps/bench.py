@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Side-by-side cost of DPD integrators in LAMMPS (docs/performance.md; a benchmark, not a
-test): wall ns per particle-step of the plugin's ABOBA and VV (`fix dpd/split`), LAMMPS's own
+test): wall ns per particle-step of the plugin's ABOBA and VV (`fix dpd/split`; the conservative
+force from pair dpd at zero friction, a pair table or the plugin's pair dpd/soft), LAMMPS's own
 velocity Verlet (`pair dpd` + `fix nve`) and Shardlow splitting (`pair dpd/fdt` + `fix
 shardlow` + `fix nve`, package DPD-REACT), on the standard box (density 3, a = 25, gamma = 4.5,
 k_B T = 1, r_c = 1, skin 0.4, dt = 0.04) at each N and rank count. The time is LAMMPS's loop
@@ -30,6 +31,9 @@ VARIANTS = {
     "plugin ABOBA, pair table": ("atomic", "pair_style table linear 1000\n"
                                            "pair_coeff 1 1 dpd.table DPD 1.0\n"
                                            "fix 1 all dpd/split aboba {kt} {gamma} 1.0 4321"),
+    # The plugin's own conservative style: pair dpd's force without its friction and noise.
+    "plugin ABOBA, pair dpd/soft": ("atomic", "pair_style dpd/soft 1.0\npair_coeff 1 1 {a}\n"
+                                              "fix 1 all dpd/split aboba {kt} {gamma} 1.0 4321"),
     "pair dpd + fix nve": ("atomic", "pair_style dpd {kt} 1.0 4321\npair_coeff 1 1 {a} {gamma} 1.0\n"
                                      "fix 1 all nve"),
     "fix shardlow": ("dpd", "pair_style dpd/fdt {kt} 1.0 4321\npair_coeff 1 1 {a} {sigma} 1.0\n"

@@ -12,7 +12,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 /// The fixed runtime: file name and contents.
-const RUNTIME: [(&str, &str); 7] = [
+const RUNTIME: [(&str, &str); 9] = [
     (
         "fix_dpd_split.h",
         include_str!("../../../lammps/plugin/fix_dpd_split.h"),
@@ -20,6 +20,14 @@ const RUNTIME: [(&str, &str); 7] = [
     (
         "fix_dpd_split.cpp",
         include_str!("../../../lammps/plugin/fix_dpd_split.cpp"),
+    ),
+    (
+        "pair_dpd_soft.h",
+        include_str!("../../../lammps/plugin/pair_dpd_soft.h"),
+    ),
+    (
+        "pair_dpd_soft.cpp",
+        include_str!("../../../lammps/plugin/pair_dpd_soft.cpp"),
     ),
     (
         "plugin.cpp",

@@ -16,6 +16,8 @@
 //! Licensed MIT (not MIT OR Apache-2.0 like the rest of the workspace): it is linked into a
 //! plugin of LAMMPS, which is GPLv2, and MIT is compatible with it.
 
+pub mod soft;
+
 use dpd_core::flow::{bbk_update, ou_update, Change};
 use dpd_core::force::full_pair_force;
 use dpd_core::rng::pair_normal;
