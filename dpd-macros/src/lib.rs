@@ -1,4 +1,6 @@
-#![doc = include_str!("dpd_scheme.md")]
+//! The `dpd_scheme!` procedural macro: compiles a splitting scheme, written in the scheme
+//! language of `dpd_ir::lang`, into a step function specialised at compile time. Its
+//! documentation, with examples, is on [`dpd_scheme!`] (re-exported as `dpd::dpd_scheme!`).
 //!
 //! # Pipeline
 //!
