@@ -7,7 +7,7 @@
 # two-particle writes and unchecked reads, the scalar and AVX2 lanes, the Philox batches, the
 # binning's counting sort, on one thread and on several), run under valgrind's memcheck, which
 # reports any read or write outside an allocation and any use of uninitialised memory. The test
-# binary is the one `cargo test --workspace --lib --bins --tests` built (the test profile keeps
+# binary is the one `cargo test --workspace` built (the test profile keeps
 # debug assertions, so the standard library's checks of `get_unchecked` and pointer arithmetic
 # preconditions run too); nothing is rebuilt here.
 set -euo pipefail
@@ -21,7 +21,7 @@ if ! command -v valgrind >/dev/null; then
 fi
 
 # The unit-test executable of dpd-core's library, from cargo's build report.
-bin=$(cargo test --workspace --lib --bins --tests --no-run --message-format=json 2>/dev/null |
+bin=$(cargo test --workspace --no-run --message-format=json 2>/dev/null |
     grep '"name":"dpd_core"' | grep '"kind":\["lib"\]' | grep '"test":true' |
     sed -n 's/.*"executable":"\([^"]*\)".*/\1/p' | head -n 1)
 if [ -z "$bin" ] || [ ! -x "$bin" ]; then

@@ -4,8 +4,8 @@
 # a workspace member, formatted and linted with the rest by scripts/test-all.sh. maturin builds it
 # with the settings of the `test` profile (optimised, as users' release builds are) so that it
 # reuses what `cargo test --workspace` compiled instead of compiling every dependency again:
-# `--profile test` itself would build a test harness, but `test` is `dev` with opt-level 3 and
-# line tables only, and cargo identifies artifacts by their settings, not by the profile's name
+# `--profile test` itself would build a test harness, but `test` is `dev` with opt-level 3, and
+# cargo identifies artifacts by their settings, not by the profile's name
 # (and the features it resolves for -p dpd-python match the workspace's: workspace-hack/).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -17,6 +17,6 @@ if [ ! -x "$venv/bin/pytest" ]; then
     python3 -m venv "$venv"
     "$venv/bin/pip" install --quiet maturin==1.8.6 numpy==2.2.6 pytest==8.3.5
 fi
-CARGO_PROFILE_DEV_OPT_LEVEL=3 CARGO_PROFILE_DEV_DEBUG=line-tables-only MATURIN_PEP517_ARGS="--profile dev" "$venv/bin/pip" install --quiet --no-build-isolation --force-reinstall --no-deps ./python
+CARGO_PROFILE_DEV_OPT_LEVEL=3 MATURIN_PEP517_ARGS="--profile dev" "$venv/bin/pip" install --quiet --no-build-isolation --force-reinstall --no-deps ./python
 # pytest exits with 5 when it collects no test: a failure here like any other non-zero code.
 "$venv/bin/pytest" -q python/tests

@@ -18,6 +18,7 @@ pub use dpd_core::{
     Scheme, Stage, SweepOrder, System, SystemBuilder, Vec3,
 };
 pub use dpd_ir::{analysis, design, lang, program, Analysis, Program};
+#[doc = include_str!("dpd_scheme.md")]
 pub use dpd_macros::dpd_scheme;
 pub use dpd_schemes as schemes;
 

@@ -1,8 +1,7 @@
 //! What a user crate that depends only on `dpd` writes: build a system, run a generated scheme,
 //! read the program of a scheme exported with `allow_inconsistent`. An integration test is a
 //! crate of its own that sees `dpd` as a dependency, as a user's crate does; these were trybuild
-//! pass cases, which made trybuild build every dependency a second time (see
-//! `dpd-macros/tests/ui.rs`).
+//! pass cases, which made trybuild build every dependency a second time (see `tests/ui.rs`).
 
 use dpd::init::{cubic_box, maxwell_momenta, uniform_positions};
 use dpd::{Params, Scheme, System};

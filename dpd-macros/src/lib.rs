@@ -1,6 +1,9 @@
 //! The `dpd_scheme!` procedural macro: compiles a splitting scheme, written in the scheme
-//! language of `dpd_ir::lang`, into a step function specialised at compile time. Its
-//! documentation, with examples, is on [`dpd_scheme!`] (re-exported as `dpd::dpd_scheme!`).
+//! language of `dpd_ir::lang`, into a step function specialised at compile time. Users call it
+//! as `dpd::dpd_scheme!`, where its documentation and examples are (`src/dpd_scheme.md` of the
+//! `dpd` crate, whose doc tests and trybuild cases exercise it: a dev-dependency on `dpd` here
+//! would build `dpd` and its dependency graph a second time, for the host, as a proc-macro
+//! crate's tests are).
 //!
 //! # Pipeline
 //!
@@ -18,7 +21,8 @@ mod valid;
 
 use proc_macro::TokenStream;
 
-#[doc = include_str!("dpd_scheme.md")]
+/// Compiles a splitting scheme into a step function specialised at compile time: see
+/// `dpd::dpd_scheme!` for the syntax, the options and examples.
 #[proc_macro]
 pub fn dpd_scheme(input: TokenStream) -> TokenStream {
     let rt = match runtime::path() {
@@ -35,7 +39,7 @@ pub fn dpd_scheme(input: TokenStream) -> TokenStream {
 mod tests {
     #[test]
     fn docs_list_every_option() {
-        let docs = include_str!("dpd_scheme.md");
+        let docs = include_str!("../../src/dpd_scheme.md");
         for o in crate::args::OPTIONS {
             let row = format!("| `{}` | {} |", o.syntax, o.meaning);
             assert!(docs.contains(&row), "missing docs row {row}");

@@ -40,10 +40,12 @@ fn extern_path(name: &str) -> TokenStream {
     quote!(::#name::__private)
 }
 
-/// Whether rustc is compiling the library of `package` (not one of its binaries, examples or
-/// tests, which reach the library by name). Cargo sets these variables for rustc, so the
-/// macro sees them.
+/// Whether rustc is compiling the library of `package` (not one of its binaries, examples,
+/// tests or doc tests, which reach the library by name). Cargo sets these variables for rustc,
+/// and rustdoc sets `UNSTABLE_RUSTDOC_TEST_PATH` when it compiles a doc test (whose
+/// `CARGO_CRATE_NAME` is still the library's), so the macro sees them.
 fn compiling_library(package: &str) -> bool {
     std::env::var_os("CARGO_BIN_NAME").is_none()
+        && std::env::var_os("UNSTABLE_RUSTDOC_TEST_PATH").is_none()
         && std::env::var("CARGO_CRATE_NAME").is_ok_and(|c| c == package.replace('-', "_"))
 }

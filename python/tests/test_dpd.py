@@ -154,12 +154,19 @@ def test_an_invalid_sweep_is_a_value_error():
 def test_ctrl_c_stops_a_run_within_a_chunk():
     # interrupt_main raises the pending signal as Ctrl-C would; the run checks for it between
     # chunks of 50 steps, so it stops long before the 100 000 steps (about 20 s) it was given.
+    # Python installs that handler only if SIGINT was not ignored when it started, and a shell
+    # starts background jobs with SIGINT ignored (interrupt_main then does nothing): set it.
     import _thread
+    import signal
 
     sim = dpd.Simulation(scheme="aboba", dt=0.05, n=500, seed=1, threads=1)
-    timer = threading.Timer(0.3, _thread.interrupt_main)
-    timer.start()
-    with pytest.raises(KeyboardInterrupt):
-        sim.run(steps=100_000)
-    timer.join()
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        timer = threading.Timer(0.3, _thread.interrupt_main)
+        timer.start()
+        with pytest.raises(KeyboardInterrupt):
+            sim.run(steps=100_000)
+        timer.join()
+    finally:
+        signal.signal(signal.SIGINT, previous)
     assert 0 < sim.step < 100_000 and sim.step % 50 == 0

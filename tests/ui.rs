@@ -1,10 +1,9 @@
 //! Compile-time behaviour of `dpd_scheme!`: every kind of bad input is one clear error at the
 //! right place (`tests/ui/<category>/<what-is-wrong>.rs` with its `.stderr`).
 //!
-//! Only failing cases, and in this crate, whose dev-dependencies are `dpd` and trybuild:
-//! trybuild's generated crate takes the dev-dependencies of the crate it tests and, with no
-//! passing case, only checks them (`cargo check`), so no benchmark or command-line crate is
-//! compiled for it. What compiles and runs in a user's crate is the root's `tests/user_crate.rs`.
+//! Only failing cases: trybuild's generated crate takes the dependencies and dev-dependencies of
+//! the crate it tests and, with no passing case, only checks them (`cargo check`). What
+//! compiles and runs in a user's crate is `tests/user_crate.rs`.
 //!
 //! Regenerate the snapshots with `TRYBUILD=overwrite`, then read every `.stderr`.
 
