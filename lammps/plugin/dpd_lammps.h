@@ -11,8 +11,8 @@ extern "C" {
 #endif
 
 enum { DPD_LAMMPS_OK = 0, DPD_LAMMPS_NULL = 1, DPD_LAMMPS_INDEX = 2, DPD_LAMMPS_FLOW = 3,
-       DPD_LAMMPS_TAG = 4 };
-enum { DPD_LAMMPS_SWEEP_O = 0, DPD_LAMMPS_SWEEP_OB = 1 };
+       DPD_LAMMPS_TAG = 4, DPD_LAMMPS_STYLE = 5 };
+enum { DPD_LAMMPS_SWEEP_O = 0, DPD_LAMMPS_SWEEP_OB = 1, DPD_LAMMPS_SWEEP_T = 2 };
 
 typedef struct DpdLammpsKernels DpdLammpsKernels;
 
@@ -22,7 +22,8 @@ void dpd_lammps_free(DpdLammpsKernels *kernels);
 int dpd_lammps_sweep(const DpdLammpsKernels *kernels, int flow, double h, uint64_t seed,
                      uint64_t step, int stream, int reverse, size_t npairs, const int *pairs,
                      size_t natoms, const double *x, double *v, const double *inv_mass,
-                     const int *tag, double *virial);
+                     const int *tag, int ntypes, const double *a, const double *rc,
+                     const int *type, double *virial);
 int dpd_lammps_dissipative_random(const DpdLammpsKernels *kernels, double dt, uint64_t seed,
                                   uint64_t step, int stream, size_t npairs, const int *pairs,
                                   size_t natoms, const double *x, const double *v,

@@ -1,9 +1,11 @@
 /* fix dpd/split: one step of an exported splitting scheme of DPD per LAMMPS step.
    SPDX-License-Identifier: MIT
 
-   The plugin only moves data: the pairwise sweeps (O, Ob) and the dissipative and random
+   The plugin only moves data: the pairwise sweeps (O, Ob, T) and the dissipative and random
    forces of F are computed by the dpd-lammps kernels (Rust, dpd-core's pair updates and
-   Philox pair noise). A is the drift, B the kick by the forces LAMMPS computes.
+   Philox pair noise). A is the drift, B the kick by the forces LAMMPS computes. T includes the
+   pair's conservative force in its exact update, so it needs that force per pair: it runs
+   when pair_style dpd/soft is the only force style, whose coefficients the kernels read.
 
    Sequential sweeps across ranks: each rank's subdomain is cut into 2 x 2 x 2 octants
    (colours); a sweep visits colour by colour, on every rank at once, the pairs whose owned
@@ -31,6 +33,7 @@
 #include "neigh_list.h"
 #include "neighbor.h"
 #include "pair.h"
+#include "pair_dpd_soft.h"
 #include "update.h"
 
 #include <cerrno>
@@ -68,13 +71,13 @@ bool needs_forces(int flow)
 /// Whether a stage needs the current positions of ghost atoms (pair geometry), but no forces.
 bool needs_ghosts(int flow)
 {
-  return flow == DpdSplit::FLOW_O || flow == DpdSplit::FLOW_OB;
+  return flow == DpdSplit::FLOW_O || flow == DpdSplit::FLOW_OB || flow == DpdSplit::FLOW_T;
 }
 
 }    // namespace
 
 FixDPDSplit::FixDPDSplit(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), scheme(nullptr), kernels(nullptr), list(nullptr), split(0),
+    Fix(lmp, narg, arg), scheme(nullptr), kernels(nullptr), list(nullptr), soft(nullptr), split(0),
     last_drift(-1), forces_stale(false), ghosts_stale(false), step_eflag(0), step_vflag(0),
     epoch(0), full_epoch(-1), colour_build(-1), comm_mode(COMM_V), full_virial{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}
 {
@@ -119,11 +122,6 @@ FixDPDSplit::FixDPDSplit(LAMMPS *lmp, int narg, char **arg) :
                  arg[8], usage);
     exponent = number(9, "exponent");
   }
-  for (int k = 0; k < scheme->nstages; ++k)
-    if (scheme->stages[k].flow == DpdSplit::FLOW_T)
-      error->all(FLERR, "fix dpd/split: scheme '{}' = {} has a T stage, which this plugin does "
-                 "not run: T's exact pair update needs each pair's conservative force, and LAMMPS "
-                 "computes forces per atom", scheme->name, scheme->program);
   char message[256] = {0};
   kernels = dpd_lammps_new(gamma, kt, rc, exponent, message, sizeof(message));
   if (!kernels) error->all(FLERR, "fix dpd/split: {}", message);
@@ -196,7 +194,48 @@ void FixDPDSplit::init()
     error->all(FLERR, "fix dpd/split: needs newton_pair on (each pair in one rank's list only)");
   if (update->dt <= 0.0) error->all(FLERR, "fix dpd/split: timestep must be > 0");
   check_subdomain_size();
+  check_trotter_input();
   neighbor->add_request(this);
+}
+
+/// For a scheme with a T stage, point `soft` at the pair style dpd/soft whose force T
+/// includes, refusing inputs whose conservative force is anything else: T's exact update
+/// needs each pair's force, which LAMMPS's per-atom force sum does not give.
+void FixDPDSplit::check_trotter_input()
+{
+  soft = nullptr;
+  bool trotter = false;
+  for (int k = 0; k < scheme->nstages; ++k) trotter |= scheme->stages[k].flow == DpdSplit::FLOW_T;
+  if (!trotter) return;
+  std::string why = std::string("fix dpd/split: scheme '") + scheme->name + "' = " +
+      scheme->program + " has a T stage, whose exact pair update includes the pair's "
+      "conservative force, so ";
+  soft = dynamic_cast<const PairDPDSoft *>(force->pair);
+  if (!soft)
+    error->all(FLERR, "{}the only pair style must be this plugin's dpd/soft (got '{}')", why,
+               force->pair_style);
+  auto refuse = [&](const char *kind, const void *defined, const char *style) {
+    if (defined)
+      error->all(FLERR, "{}pair_style dpd/soft must be the only force style; the input also "
+                 "defines {}_style {}, whose force a T update would leave out", why, kind, style);
+  };
+  refuse("bond", force->bond, force->bond_style);
+  refuse("angle", force->angle, force->angle_style);
+  refuse("dihedral", force->dihedral, force->dihedral_style);
+  refuse("improper", force->improper, force->improper_style);
+  refuse("kspace", force->kspace, force->kspace_style);
+  if (atom->molecular)
+    for (int k = 1; k < 4; ++k)
+      if (force->special_lj[k] != 1.0)
+        error->all(FLERR, "{}special_bonds lj factors must be 1 (got {} {} {}): T applies "
+                   "dpd/soft's force to every listed pair unscaled", why, force->special_lj[1],
+                   force->special_lj[2], force->special_lj[3]);
+  int n = atom->ntypes + 1;
+  for (int i = 1; i < n; ++i)
+    for (int j = i; j < n; ++j)
+      if (soft->cutoffs()[i * n + j] > rc)
+        error->all(FLERR, "{}pair_coeff {} {} has cutoff {} beyond the fix's r_c = {}: the sweep "
+                   "sees only the pairs within r_c", why, i, j, soft->cutoffs()[i * n + j], rc);
 }
 
 /// Refuse subdomains thinner than 4 r_c + 2 skin (see the header of this file) along a
@@ -231,6 +270,15 @@ void FixDPDSplit::init_list(int, NeighList *ptr)
 
 void FixDPDSplit::setup(int)
 {
+  // A scheme without B or F stages (SAS = T A T) never applies atom->f, so the forces other
+  // fixes add to it after LAMMPS's evaluation would be silently lost.
+  bool kicks = false;
+  for (int k = 0; k < scheme->nstages; ++k) kicks |= needs_forces(scheme->stages[k].flow);
+  if (!kicks && modify->n_post_force_any > 0)
+    error->all(FLERR, "fix dpd/split: scheme '{}' = {} has no B or F stage, so it never applies "
+               "the forces that {} other fix(es) add after the force evaluation (fix addforce, "
+               "walls, ...); use a scheme with B stages or remove those fixes", scheme->name,
+               scheme->program, modify->n_post_force_any);
   forces_stale = ghosts_stale = false;
   ++epoch;
 }
@@ -282,12 +330,11 @@ void FixDPDSplit::run_stages(int from, int to)
         break;
       case DpdSplit::FLOW_O:
       case DpdSplit::FLOW_OB:
+      case DpdSplit::FLOW_T:
         sweep(stage);
         break;
       case DpdSplit::FLOW_F:
         full_force(stage);
-        break;
-      default:    // T: refused in the constructor
         break;
     }
   }
@@ -366,7 +413,11 @@ void FixDPDSplit::sweep(const Stage &stage)
   if (domain->box_change) check_subdomain_size();
   prepare_atoms();
   colour_pairs_of_list();
-  int flow = stage.flow == DpdSplit::FLOW_O ? DPD_LAMMPS_SWEEP_O : DPD_LAMMPS_SWEEP_OB;
+  int flow = stage.flow == DpdSplit::FLOW_O  ? DPD_LAMMPS_SWEEP_O
+      : stage.flow == DpdSplit::FLOW_OB      ? DPD_LAMMPS_SWEEP_OB
+                                             : DPD_LAMMPS_SWEEP_T;
+  // T's conservative force (check_trotter_input has set `soft` for schemes with T stages).
+  bool trotter = flow == DPD_LAMMPS_SWEEP_T;
   double h = stage.coeff * update->dt;
   double impulses[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
   comm_mode = COMM_V;
@@ -378,7 +429,10 @@ void FixDPDSplit::sweep(const Stage &stage)
     check_status(dpd_lammps_sweep(kernels, flow, h, seed, (uint64_t) update->ntimestep,
                                   stage.stream, stage.reverse, pairs.size() / 2, pairs.data(),
                                   nall, &atom->x[0][0], &atom->v[0][0], inv_mass.data(),
-                                  atom->tag, vflag_global ? impulses : nullptr),
+                                  atom->tag, trotter ? atom->ntypes : 0,
+                                  trotter ? soft->strengths() : nullptr,
+                                  trotter ? soft->cutoffs() : nullptr,
+                                  trotter ? atom->type : nullptr, vflag_global ? impulses : nullptr),
                  "sweep");
     comm_mode = COMM_DV;
     comm->reverse_comm(this);

@@ -32,6 +32,8 @@ class FixDPDSplit : public Fix {
   unsigned long long seed;
   DpdLammpsKernels *kernels;
   class NeighList *list;
+  /// The conservative force of T stages (null when the scheme has none), set by init().
+  const class PairDPDSoft *soft;
 
   /// Stages [0, split) run in initial_integrate, the rest in final_integrate, so that
   /// LAMMPS's own force evaluation falls at the first stage needing forces after a drift.
@@ -62,6 +64,7 @@ class FixDPDSplit : public Fix {
   void refresh(int eflag, int vflag);
   void refresh_ghosts();
   void check_subdomain_size();
+  void check_trotter_input();
   void prepare_atoms();
   void colour_pairs_of_list();
   void check_status(int status, const char *what);

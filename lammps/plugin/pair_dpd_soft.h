@@ -18,6 +18,10 @@ class PairDPDSoft : public Pair {
   void coeff(int, char **) override;
   void init_style() override;
   double init_one(int, int) override;
+  /// The per type-pair strengths and cutoffs (see `a`, `cut`), symmetric once LAMMPS's init
+  /// has run: fix dpd/split's T stages include this force in their exact pair update.
+  const double *strengths() const { return a.data(); }
+  const double *cutoffs() const { return cut.data(); }
 
  private:
   double cut_global;

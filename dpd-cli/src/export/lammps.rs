@@ -67,16 +67,9 @@ pub struct Exported {
     pub consistent: bool,
 }
 
-/// The letters the plugin runs: all but T, whose exact per-pair update (algorithms.md section
-/// 2) needs the pair's conservative force, while LAMMPS computes forces per atom, summed over
-/// any pair, bond and kspace styles.
-fn supported(flow: Flow) -> bool {
-    !matches!(flow, Flow::T)
-}
-
 /// The program of a registry name or scheme string, or why it cannot be exported: unknown
-/// (the registry's message), hand-written, a letter the plugin does not run, or inconsistent
-/// without `allow_inconsistent`.
+/// (the registry's message), hand-written, or inconsistent without `allow_inconsistent`. Every
+/// letter runs in the plugin (T only with `pair_style dpd/soft`, which the fix checks).
 pub fn resolve(name: &str, allow_inconsistent: bool) -> Result<Exported, String> {
     let (label, program) = match lookup(name) {
         Ok(entry) => match entry.scheme().program() {
@@ -107,15 +100,6 @@ pub fn resolve(name: &str, allow_inconsistent: bool) -> Result<Exported, String>
             }
         }
     };
-    if let Some(stage) = program.stages.iter().find(|s| !supported(s.flow)) {
-        return Err(format!(
-            "scheme '{name}' = {program} has a {:?} stage; the LAMMPS plugin runs A, B, O, Ob \
-             and F stages (T's exact pair update needs each pair's conservative force, and \
-             LAMMPS sums forces per atom over all its force styles, so no pair force exists to \
-             use)",
-            stage.flow
-        ));
-    }
     let consistent = program.analysis().consistent;
     if !consistent && !allow_inconsistent {
         return Err(format!(
@@ -259,6 +243,8 @@ mod tests {
         let y4 = resolve("S(x1) S(x0) S(x1) O", false).unwrap();
         assert_eq!(y4.ident, "s_x1_s_x0_s_x1_o");
         assert_eq!(y4.program.stages.last().unwrap().flow, Flow::O);
+        let sas = resolve("sas", false).unwrap();
+        assert_eq!(sas.program.stages[0].flow, Flow::T);
     }
 
     #[test]
@@ -267,11 +253,6 @@ mod tests {
         assert!(unknown.contains("unknown scheme 'abobq'"), "{unknown}");
         let hand = resolve("setd", false).unwrap_err();
         assert!(hand.contains("hand-written"), "{hand}");
-        let trotter = resolve("sas", false).unwrap_err();
-        assert!(
-            trotter.contains("T stage") && trotter.contains("conservative force"),
-            "{trotter}"
-        );
         let inconsistent = resolve("A B(1/2) O", false).unwrap_err();
         assert!(
             inconsistent.contains("--allow-inconsistent"),

@@ -9,6 +9,8 @@
 //! order (or reversed), each to the current velocities of both atoms, as in dpd-core's sweeps
 //! (algorithms.md section 2): `u = e_ij . (v_i - v_j)`, `impulse = slope u + offset`,
 //! `v_i += impulse e_ij / m_i`, `v_j -= impulse e_ij / m_j`. Pairs at `r >= r_c` are skipped.
+//! The T sweep includes the pair's conservative force, that of the plugin's pair style
+//! `dpd/soft` ([`soft::SoftStyle`]), in its exact update.
 //! The normal of a pair is dpd-core's Philox pair normal keyed by
 //! `(seed, step, stream, min(tag), max(tag))`, so each pair gets the same numbers whatever the
 //! decomposition of the box over ranks.
@@ -18,10 +20,11 @@
 
 pub mod soft;
 
-use dpd_core::flow::{bbk_update, ou_update, Change};
+use dpd_core::flow::{bbk_update, ou_update, trotter_update, Change};
 use dpd_core::force::full_pair_force;
 use dpd_core::rng::pair_normal;
 use dpd_core::Params;
+use soft::SoftStyle;
 use std::ffi::{c_char, c_int};
 
 /// The sweep parameters of one fix: `gamma`, `k_B T`, cutoff and weight exponent, validated
@@ -38,6 +41,15 @@ pub enum SweepFlow {
     Ou = 0,
     /// Ob: Shardlow's BBK update.
     Bbk = 1,
+    /// T: the exact pair update with the pair's conservative force included (DPD-Trotter).
+    Trotter = 2,
+}
+
+/// The conservative force a T sweep includes: the `dpd/soft` coefficients and the atoms' types
+/// (`n` values, LAMMPS's `atom->type`).
+pub struct Conservative<'a> {
+    pub style: SoftStyle<'a>,
+    pub types: &'a [c_int],
 }
 
 /// Status of a call: 0 for success, else what was wrong.
@@ -50,6 +62,8 @@ pub const DPD_LAMMPS_INDEX: c_int = 2;
 pub const DPD_LAMMPS_FLOW: c_int = 3;
 /// A negative tag (global atom id).
 pub const DPD_LAMMPS_TAG: c_int = 4;
+/// A T sweep without the conservative style, or an atom type outside it.
+pub const DPD_LAMMPS_STYLE: c_int = 5;
 
 impl Kernels {
     /// Validated parameters, or dpd-core's message naming the bad field, its value and what
@@ -65,14 +79,15 @@ impl Kernels {
             .map_err(|e| e.to_string())
     }
 
-    /// The update of a pair at weight `w = 1 - r/r_c` with inverse reduced mass `mu` and
-    /// standard normal `z`.
-    fn change(&self, flow: SweepFlow, h: f64, w: f64, mu: f64, z: f64) -> Change {
+    /// The update of a pair at weight `w = 1 - r/r_c` with inverse reduced mass `mu`,
+    /// standard normal `z` and conservative pair force `f` (used by T only).
+    fn change(&self, flow: SweepFlow, h: f64, w: f64, mu: f64, z: f64, f: f64) -> Change {
         let p = &self.params;
         let wr = p.w_r(w);
         match flow {
             SweepFlow::Ou => ou_update(p.gamma(), p.kbt(), h, wr, mu, z),
             SweepFlow::Bbk => bbk_update(p.gamma(), p.sigma(), h, h.max(0.0).sqrt(), wr, mu, z),
+            SweepFlow::Trotter => trotter_update(p.gamma(), p.kbt(), h, f, wr, mu, z),
         }
     }
 
@@ -90,9 +105,9 @@ impl Kernels {
         }
     }
 
-    /// The unit vector `e_ij` and weight `w = 1 - r/r_c` of the pair `(i, j)` of positions `x`
-    /// when `0 < r < r_c`.
-    fn geometry(&self, x: &[f64], i: usize, j: usize) -> Option<([f64; 3], f64)> {
+    /// The unit vector `e_ij`, distance `r` and weight `w = 1 - r/r_c` of the pair `(i, j)` of
+    /// positions `x` when `0 < r < r_c`.
+    fn geometry(&self, x: &[f64], i: usize, j: usize) -> Option<([f64; 3], f64, f64)> {
         let rc = self.params.rc();
         let d: [f64; 3] = std::array::from_fn(|k| x[3 * i + k] - x[3 * j + k]);
         let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
@@ -100,13 +115,15 @@ impl Kernels {
             return None;
         }
         let r = r2.sqrt();
-        Some((d.map(|c| c / r), 1.0 - r / rc))
+        Some((d.map(|c| c / r), r, 1.0 - r / rc))
     }
 
     /// Apply the sweep `flow` of step length `h` to `pairs` in the given order (see the crate
-    /// documentation); `x`, `v` hold `3 n` doubles, `inv_mass` and `tag` `n` values. With
-    /// `virial`, adds each pair's `r_ij (x) J_ij` to it ([`add_virial`]), `J_ij` the impulse on
-    /// atom i. Returns a `DPD_LAMMPS_*` status; on an error no velocity has changed.
+    /// documentation); `x`, `v` hold `3 n` doubles, `inv_mass` and `tag` `n` values; T needs
+    /// `conservative`, the others ignore it. With `virial`, adds each pair's `r_ij (x) J_ij` to
+    /// it ([`add_virial`]), `J_ij` the impulse on atom i less its conservative part (the pair
+    /// style's virial holds that). Returns a `DPD_LAMMPS_*` status; on an error no velocity
+    /// has changed.
     #[allow(clippy::too_many_arguments)]
     pub fn sweep(
         &self,
@@ -119,20 +136,40 @@ impl Kernels {
         v: &mut [f64],
         inv_mass: &[f64],
         tag: &[c_int],
+        conservative: Option<&Conservative>,
         mut virial: Option<&mut [f64; 6]>,
     ) -> c_int {
         let status = Self::check(pairs, x, v, inv_mass, tag);
-        if status != DPD_LAMMPS_OK || self.params.gamma() == 0.0 {
+        if status != DPD_LAMMPS_OK {
             return status;
         }
+        let conservative = match (flow, conservative) {
+            (SweepFlow::Trotter, Some(c)) => {
+                // `check` has bounded the indices by the atom count.
+                if pairs
+                    .iter()
+                    .flatten()
+                    .any(|&k| c.style.type_of(c.types, k as usize).is_none())
+                {
+                    return DPD_LAMMPS_STYLE;
+                }
+                Some(c)
+            }
+            (SweepFlow::Trotter, None) => return DPD_LAMMPS_STYLE,
+            _ if self.params.gamma() == 0.0 => return DPD_LAMMPS_OK,
+            _ => None,
+        };
         let mut apply = |&[i, j]: &[c_int; 2]| {
             let (i, j) = (i as usize, j as usize);
-            let Some((e, w)) = self.geometry(x, i, j) else {
+            let Some((e, r, w)) = self.geometry(x, i, j) else {
                 return;
             };
             let (mi, mj) = (inv_mass[i], inv_mass[j]);
             let z = pair_normal(seed, step, stream, tag[i] as u32, tag[j] as u32);
-            let c = self.change(flow, h, w, mi + mj, z);
+            // Every atom's type was checked above.
+            let f =
+                conservative.map_or(0.0, |c| c.style.pair_force(c.types, i, j, r).unwrap_or(0.0));
+            let c = self.change(flow, h, w, mi + mj, z, f);
             let u = (0..3)
                 .map(|k| e[k] * (v[3 * i + k] - v[3 * j + k]))
                 .sum::<f64>();
@@ -142,7 +179,7 @@ impl Kernels {
                 v[3 * j + k] -= impulse * e[k] * mj;
             }
             if let Some(virial) = virial.as_deref_mut() {
-                add_virial(virial, x, i, j, impulse, e);
+                add_virial(virial, x, i, j, impulse - c.conservative, e);
             }
         };
         if reverse {
@@ -182,7 +219,7 @@ impl Kernels {
         let noise = p.sigma() / dt.sqrt();
         for &[i, j] in pairs {
             let (i, j) = (i as usize, j as usize);
-            let Some((e, w)) = self.geometry(x, i, j) else {
+            let Some((e, _, w)) = self.geometry(x, i, j) else {
                 continue;
             };
             let z = if noise > 0.0 {
@@ -348,19 +385,21 @@ impl<'a> Call<'a> {
     }
 }
 
-/// Apply the pairwise sweep `flow` (a [`SweepFlow`] code: 0 = O, 1 = Ob) of step length `h`
-/// to `npairs` pairs (`pairs[2k]`, `pairs[2k + 1]` are the atom indices of pair k), in order,
-/// or last to first when `reverse` is non-zero, with the noise of `(seed, step, stream)`.
-/// `virial` is null, or 6 doubles to which each pair's `r_ij (x) J_ij` is added (xx, yy, zz,
-/// xy, xz, yz; `J_ij` the impulse on atom i). Returns `DPD_LAMMPS_OK`, or an error status
-/// with no velocity changed.
+/// Apply the pairwise sweep `flow` (a [`SweepFlow`] code: 0 = O, 1 = Ob, 2 = T) of step length
+/// `h` to `npairs` pairs (`pairs[2k]`, `pairs[2k + 1]` are the atom indices of pair k), in
+/// order, or last to first when `reverse` is non-zero, with the noise of `(seed, step, stream)`.
+/// T adds the `dpd/soft` force of `ntypes` types with coefficients `a` and cutoffs `rc`
+/// (`(ntypes + 1)^2` doubles each, as in [`soft`]) and atom types `type_` (`natoms` ints); O
+/// and Ob ignore them (null is allowed). `virial` is null, or 6 doubles to which each pair's
+/// `r_ij (x) J_ij` is added (xx, yy, zz, xy, xz, yz; `J_ij` the impulse on atom i less its
+/// conservative part). Returns `DPD_LAMMPS_OK`, or an error status with no velocity changed.
 ///
 /// # Safety
 /// `kernels` is null or comes from [`dpd_lammps_new`]; `pairs` points to `2 npairs` ints (may
 /// be null when `npairs == 0`); `x` and `v` to `3 natoms` doubles, `v` writable; `inv_mass` to
-/// `natoms` doubles and `tag` to `natoms` ints; `virial` is null or points to 6 writable
-/// doubles; the writable arrays overlap no other. Indices and tags are checked against
-/// `natoms`, not trusted.
+/// `natoms` doubles and `tag` to `natoms` ints; for T, `a`, `rc` and `type_` as said above;
+/// `virial` is null or points to 6 writable doubles; the writable arrays overlap no other.
+/// Indices, tags and types are checked against `natoms` and `ntypes`, not trusted.
 #[no_mangle]
 pub unsafe extern "C" fn dpd_lammps_sweep(
     kernels: *const Kernels,
@@ -377,12 +416,29 @@ pub unsafe extern "C" fn dpd_lammps_sweep(
     v: *mut f64,
     inv_mass: *const f64,
     tag: *const c_int,
+    ntypes: c_int,
+    a: *const f64,
+    rc: *const f64,
+    type_: *const c_int,
     virial: *mut f64,
 ) -> c_int {
     let flow = match flow {
         0 => SweepFlow::Ou,
         1 => SweepFlow::Bbk,
+        2 => SweepFlow::Trotter,
         _ => return DPD_LAMMPS_FLOW,
+    };
+    let conservative = match (flow, usize::try_from(ntypes)) {
+        (SweepFlow::Trotter, Ok(ntypes)) => {
+            let table = (ntypes + 1) * (ntypes + 1);
+            // SAFETY: the contract gives each array its length.
+            let arrays = unsafe { (slice(a, table), slice(rc, table), slice(type_, natoms)) };
+            let (Some(a), Some(rc), Some(types)) = arrays else {
+                return DPD_LAMMPS_NULL;
+            };
+            SoftStyle::new(ntypes, a, rc, [1.0; 4]).map(|style| Conservative { style, types })
+        }
+        _ => None,
     };
     // SAFETY: the contract.
     let (call, v, virial) = unsafe {
@@ -408,6 +464,7 @@ pub unsafe extern "C" fn dpd_lammps_sweep(
             v,
             c.inv_mass,
             c.tag,
+            conservative.as_ref(),
             virial,
         ),
         (Err(status), _) => status,
@@ -506,6 +563,7 @@ mod tests {
             &mut v,
             &inv_mass,
             &tag,
+            None,
             Some(&mut virial),
         );
         assert_eq!(status, DPD_LAMMPS_OK);
@@ -589,6 +647,7 @@ mod tests {
                 &inv_mass,
                 tag,
                 None,
+                None,
             )
         };
         assert_eq!(sweep(&mut v, &tag, &[[0, 3]]), DPD_LAMMPS_INDEX);
@@ -617,6 +676,7 @@ mod tests {
             &inv_mass,
             &tag,
             None,
+            None,
         );
         assert_eq!(status, DPD_LAMMPS_OK);
         let call = |stream: c_int, v: *mut f64, x: *const f64| {
@@ -637,6 +697,10 @@ mod tests {
                     v,
                     inv_mass.as_ptr(),
                     tag.as_ptr(),
+                    0,
+                    std::ptr::null(),
+                    std::ptr::null(),
+                    std::ptr::null(),
                     std::ptr::null_mut(),
                 )
             }
@@ -655,6 +719,82 @@ mod tests {
             DPD_LAMMPS_NULL
         );
         assert_eq!(untouched, v);
+    }
+
+    /// The T update of one pair against its formula from algorithms.md section 2, evaluated
+    /// here independently: `u' = u e^{-tau h} + (f mu / tau)(1 - e^{-tau h}) + sqrt(kT mu (1 -
+    /// e^{-2 tau h})) z` with the `dpd/soft` force `f = a_12 (1 - r/r_c,12)` of the atoms'
+    /// types; the virial holds the impulse less its conservative part `f h`. Without the
+    /// style, or with a type outside it, the sweep is refused with nothing changed.
+    #[test]
+    fn one_pair_gets_the_exact_trotter_update_with_its_types_soft_force() {
+        let (gamma, kbt, h) = (4.5, 1.3, 0.05);
+        let k = Kernels::new(gamma, kbt, 1.0, 2.0).unwrap();
+        let (x, mut v, inv_mass, tag) = scene();
+        let before = v.clone();
+        // Two types: a_12 = 30 with cutoff 0.9 (so the pair's force uses its own cutoff).
+        let a = [0.0, 0.0, 0.0, 0.0, 25.0, 30.0, 0.0, 30.0, 40.0];
+        let rc = [0.0, 0.0, 0.0, 0.0, 1.0, 0.9, 0.0, 0.9, 1.0];
+        let types = [1, 2, 2];
+        let conservative = Conservative {
+            style: SoftStyle::new(2, &a, &rc, [1.0; 4]).unwrap(),
+            types: &types,
+        };
+        let mut virial = [0.0; 6];
+        let sweep = |v: &mut [f64], c: Option<&Conservative>, virial: Option<&mut [f64; 6]>| {
+            let pairs = [[0, 1], [0, 2]];
+            k.sweep(
+                SweepFlow::Trotter,
+                h,
+                (42, 9, 2),
+                &pairs,
+                false,
+                &x,
+                v,
+                &inv_mass,
+                &tag,
+                c,
+                virial,
+            )
+        };
+        assert_eq!(sweep(&mut v, None, None), DPD_LAMMPS_STYLE);
+        let bad_types = [1, 3, 1];
+        let outside = Conservative {
+            style: SoftStyle::new(2, &a, &rc, [1.0; 4]).unwrap(),
+            types: &bad_types,
+        };
+        assert_eq!(sweep(&mut v, Some(&outside), None), DPD_LAMMPS_STYLE);
+        assert_eq!(v, before);
+        assert_eq!(
+            sweep(&mut v, Some(&conservative), Some(&mut virial)),
+            DPD_LAMMPS_OK
+        );
+        let d: [f64; 3] = [-0.6, -0.2, 0.1];
+        let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        let e = d.map(|c| c / r);
+        let mu = 1.0 + 0.5;
+        let tau = gamma * (1.0 - r).powi(2) * mu;
+        let f = 30.0 * (1.0 - r / 0.9);
+        let u = |v: &[f64]| (0..3).map(|c| e[c] * (v[c] - v[3 + c])).sum::<f64>();
+        let z = pair_normal(42, 9, 2, 3, 7);
+        let decay = (-tau * h).exp();
+        let expected = u(&before) * decay
+            + f * mu / tau * (1.0 - decay)
+            + (kbt * mu * (1.0 - (-2.0 * tau * h).exp())).sqrt() * z;
+        assert!((u(&v) - expected).abs() < 1e-12, "{} vs {expected}", u(&v));
+        let impulse: [f64; 3] = std::array::from_fn(|c| v[c] - before[c]);
+        for (slot, (a, b)) in [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)]
+            .into_iter()
+            .enumerate()
+        {
+            let expected = d[a] * (impulse[b] - f * h * e[b]);
+            assert!((virial[slot] - expected).abs() < 1e-12, "{virial:?}");
+        }
+        let (p0, p1) = (momentum(&before, &inv_mass), momentum(&v, &inv_mass));
+        for c in 0..3 {
+            assert!((p0[c] - p1[c]).abs() < 1e-14);
+        }
+        assert_eq!(&v[6..], &before[6..]);
     }
 
     #[test]

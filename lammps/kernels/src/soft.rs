@@ -55,9 +55,22 @@ impl<'a> SoftStyle<'a> {
     }
 
     /// The type of atom `k` as a table row, if `k` is an atom and its type in `1..=ntypes`.
-    fn type_of(&self, types: &[c_int], k: usize) -> Option<usize> {
+    pub(crate) fn type_of(&self, types: &[c_int], k: usize) -> Option<usize> {
         let t = usize::try_from(*types.get(k)?).ok()?;
         (1..=self.ntypes).contains(&t).then_some(t)
+    }
+
+    /// The conservative force along `e_ij` between atoms `i` and `j` of `types` at distance
+    /// `r`: `a_ij (1 - r/r_c,ij)`, 0 at and beyond the pair's cutoff, without special-bond
+    /// factor (a T sweep's pairs carry none); `None` if an atom or its type is out of range.
+    pub fn pair_force(&self, types: &[c_int], i: usize, j: usize, r: f64) -> Option<f64> {
+        let pair = self.type_of(types, i)? * (self.ntypes + 1) + self.type_of(types, j)?;
+        let rc = self.rc[pair];
+        Some(if r < rc {
+            Soft::new(self.a[pair], rc).force(1.0 - r / rc)
+        } else {
+            0.0
+        })
     }
 
     /// Add the forces between atom `i` and its `neighbours` (neighbour indices as LAMMPS
