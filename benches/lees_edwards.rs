@@ -1,6 +1,6 @@
 //! What the Lees-Edwards code costs: one step of ABOBA (O sweep, conservative kicks, drifts)
 //! and of velocity Verlet (full-force F kicks) on the equilibrium box of N = 24 000 (density 3,
-//! a = 25, gamma = 4.5, dt = 0.04, default skin 0.3), on one thread, in three boundaries:
+//! a = 25, gamma = 4.5, dt = 0.04, default skin 0), on one thread, in three boundaries:
 //! - `periodic`: no shear; the sweeps, drifts and neighbour search take their periodic paths;
 //! - `lees-edwards/kappa=0`: the sliding-boundary paths with a zero shear rate (bitwise the
 //!   periodic trajectory), i.e. the cost of the code itself;

@@ -25,7 +25,7 @@ fn invalid_inputs_name_their_field() {
         build(&|b| b.momenta(vec![Vec3::zeros(), Vec3::new(f64::INFINITY, 0.0, 0.0)])),
         "momenta[1]"
     );
-    let small = PeriodicBox::cubic(2.0).unwrap();
+    let small = PeriodicBox::cubic(1.9).unwrap();
     let e = System::builder(params.clone(), small, two())
         .build()
         .unwrap_err();

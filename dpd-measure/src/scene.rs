@@ -54,6 +54,10 @@ pub struct Scene {
     pub runs: u64,
     /// Worker threads for independent runs; 0 means one per core.
     pub threads: usize,
+    /// Verlet-list skin in units of r_c: pairs within r_c + skin are listed, and the list is
+    /// rebuilt once a particle may have crossed it. 0 (the default) rebuilds the cell lists
+    /// every step. It changes the cost and the order of the pair sweeps, not the physics.
+    pub skin: f64,
     pub rdf: Option<RdfSpec>,
     pub vacf: Option<VacfSpec>,
     pub sweep: Option<SweepSpec>,
@@ -151,6 +155,7 @@ impl Default for Scene {
             seed: 1,
             runs: 1,
             threads: 0,
+            skin: DEFAULT_SKIN,
             rdf: None,
             vacf: None,
             sweep: None,
@@ -394,7 +399,13 @@ impl Scene {
                  machine; 0 means one per core)"
             ),
         )?;
-        let min_edge = 2.0 * (1.0 + DEFAULT_SKIN);
+        require(
+            "skin",
+            self.skin,
+            self.skin.is_finite() && (0.0..=1.0).contains(&self.skin),
+            "must be in [0, 1] (in units of r_c)",
+        )?;
+        let min_edge = 2.0 * (1.0 + self.skin);
         let max_density = MAX_PARTICLES as f64 / min_edge.powi(3);
         require(
             "density",
@@ -568,7 +579,8 @@ impl Scene {
             .masses(masses)
             .kinds(kinds)
             .dt(dt)
-            .seed(seed);
+            .seed(seed)
+            .skin(self.skin);
         if let Some(w) = &self.walls {
             let walls = w.walls()?;
             let frozen = freeze_outside(&walls, &q, &mut p);
@@ -756,6 +768,10 @@ mod tests {
             ("gamma = \"x\"", "gamma"),
             ("kbt = 0.0", "kbt"),
             ("n = 10", "n"),
+            ("skin = -0.1", "skin"),
+            ("skin = 1.5", "skin"),
+            // Edge 2.37: enough for the default skin 0 (2 r_c), not for 0.5 (2 (r_c + skin)).
+            ("n = 40\nskin = 0.5", "n"),
             ("average_fraction = 1.5", "average_fraction"),
             ("runs = 0", "runs"),
             ("[rdf]\nr_max = 9.0", "rdf.r_max"),
@@ -766,6 +782,13 @@ mod tests {
             let e = error_of(text);
             assert!(e.contains(key), "{text:?}: {e}");
         }
+    }
+
+    #[test]
+    fn the_default_skin_allows_a_box_of_edge_two_r_c() {
+        let scene = Scene::from_toml("n = 40", "t.toml").unwrap();
+        assert_eq!(scene.skin, 0.0);
+        scene.validate().unwrap();
     }
 
     #[test]

@@ -18,13 +18,18 @@ fn dt_for(name: &str) -> f64 {
 }
 
 #[test]
-fn every_scheme_samples_the_target_temperature_within_2_percent() {
+fn every_scheme_samples_the_target_temperature_within_3_5_percent() {
     // 40 time units (25 for Iwatsu B), the first 10 % discarded (the soft fluid equilibrates
-    // in about one time unit from uniform positions), sampled every 20 steps. One sample of
-    // T_K of N = 500 fluctuates by sqrt(2/1497) = 3.7 % and of the T_C numerator by a few
-    // per cent; with correlation times ~0.3 time units, 36 time units hold ~60 independent
-    // samples: standard errors ~0.5 %, so 2 % is about four standard errors beyond the small
-    // bias of a scheme at this dt. The runs are seeded, hence reproducible.
+    // in about one time unit from uniform positions), sampled every 20 steps. The spread of
+    // these averages is measured, not estimated from a correlation time: over the 20 schemes
+    // run at dt = 0.005 (whose biases there are far below it) T_K - 1 and T_C - 1 have
+    // standard deviations 0.85 % and 0.95 % around means of +0.03 % and +0.1 % (2026-12-04,
+    // neighbour skin 0; the 2 % this test asked before was about two of them, and OBABO's T_C
+    // came out at +2.15 % once the pair order changed). 3.5 % is 3.7 of them: a correct
+    // scheme fails by chance with probability ~2e-4, ~1e-2 over the 42 values, while a wrong
+    // noise amplitude or a lost pair update moves the temperature by far more. The runs are
+    // seeded, hence reproducible; the exact stationary distributions are tested sharply in
+    // dpd-core's tests/ou_stationary.rs.
     let results: Vec<_> = entries()
         .par_iter()
         .map(|e| {
@@ -44,9 +49,9 @@ fn every_scheme_samples_the_target_temperature_within_2_percent() {
             tk - 1.0,
             tc - 1.0
         );
-        if (tk - 1.0).abs() > 0.02 || (tc - 1.0).abs() > 0.02 {
+        if (tk - 1.0).abs() > 0.035 || (tc - 1.0).abs() > 0.035 {
             failures.push(format!("{name}: T_K = {tk:.4}, T_C = {tc:.4}"));
         }
     }
-    assert!(failures.is_empty(), "off by more than 2 %: {failures:?}");
+    assert!(failures.is_empty(), "off by more than 3.5 %: {failures:?}");
 }
