@@ -74,6 +74,19 @@ bool needs_ghosts(int flow)
   return flow == DpdSplit::FLOW_O || flow == DpdSplit::FLOW_OB || flow == DpdSplit::FLOW_T;
 }
 
+bool is_trotter(int flow)
+{
+  return flow == DpdSplit::FLOW_T;
+}
+
+/// Whether some stage of `scheme` has a flow for which `pred` holds.
+bool any_stage(const DpdSplit::Scheme &scheme, bool (*pred)(int))
+{
+  for (int k = 0; k < scheme.nstages; ++k)
+    if (pred(scheme.stages[k].flow)) return true;
+  return false;
+}
+
 }    // namespace
 
 FixDPDSplit::FixDPDSplit(LAMMPS *lmp, int narg, char **arg) :
@@ -204,9 +217,7 @@ void FixDPDSplit::init()
 void FixDPDSplit::check_trotter_input()
 {
   soft = nullptr;
-  bool trotter = false;
-  for (int k = 0; k < scheme->nstages; ++k) trotter |= scheme->stages[k].flow == DpdSplit::FLOW_T;
-  if (!trotter) return;
+  if (!any_stage(*scheme, is_trotter)) return;
   std::string why = std::string("fix dpd/split: scheme '") + scheme->name + "' = " +
       scheme->program + " has a T stage, whose exact pair update includes the pair's "
       "conservative force, so ";
@@ -272,9 +283,7 @@ void FixDPDSplit::setup(int)
 {
   // A scheme without B or F stages (SAS = T A T) never applies atom->f, so the forces other
   // fixes add to it after LAMMPS's evaluation would be silently lost.
-  bool kicks = false;
-  for (int k = 0; k < scheme->nstages; ++k) kicks |= needs_forces(scheme->stages[k].flow);
-  if (!kicks && modify->n_post_force_any > 0)
+  if (!any_stage(*scheme, needs_forces) && modify->n_post_force_any > 0)
     error->all(FLERR, "fix dpd/split: scheme '{}' = {} has no B or F stage, so it never applies "
                "the forces that {} other fix(es) add after the force evaluation (fix addforce, "
                "walls, ...); use a scheme with B stages or remove those fixes", scheme->name,
