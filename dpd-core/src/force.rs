@@ -5,8 +5,7 @@ use crate::neighbour::VerletList;
 use crate::pairs::{Bound, ByPair, Noise, Pair, PairTable, Run, Two, Virial};
 use crate::params::Params;
 use crate::params::Repulsion;
-use crate::system::System;
-use crate::{Tensor, Vec3};
+use crate::Vec3;
 use dpd_ir::SweepOrder;
 
 /// `out_i = F^C_i = sum_j a_ij (1 - r_ij/r_c) e_ij`.
@@ -60,30 +59,14 @@ impl<'a> Conservative<'a> {
     }
 }
 
-/// Full DPD force at the current momenta into `sys.full`:
+/// Full DPD forces at the current momenta into `s.full`, from the pair table:
 /// `sum_j [a w - gamma w_R^2 (e . v_ij) + sigma w_R zeta_ij / sqrt(dt)] e_ij`,
-/// with `zeta_ij` the pair normal of `stream` in the current step and `v_ij` including the pair's
-/// velocity shift (image velocity across a sliding boundary, wall velocity of frozen particles). Multiplied by a step `h` this is the F kick of
-/// algorithms.md section 2. When pair impulses are being recorded, the pair virial of the
-/// dissipative and random parts goes to `sys.full_virial`.
-pub(crate) fn full(sys: &mut System, stream: u8) {
-    sys.full_virial = match (sys.shifted_pairs(), sys.impulses.is_some()) {
-        (false, false) => {
-            full_with::<false, ()>(sys, stream);
-            None
-        }
-        (true, false) => {
-            full_with::<true, ()>(sys, stream);
-            None
-        }
-        (false, true) => Some(full_with::<false, Tensor>(sys, stream)),
-        (true, true) => Some(full_with::<true, Tensor>(sys, stream)),
-    };
-}
-
+/// with `zeta_ij` the pair normal of the noise and `v_ij` including the pair's velocity shift
+/// (image velocity across a sliding boundary, wall velocity of frozen particles) when
+/// `SHIFTED`. Multiplied by a step `h` this is the F kick of algorithms.md section 2. Returns
+/// the pair virial of the dissipative and random parts when `V` is [`crate::Tensor`].
 #[inline(always)]
-fn full_with<const SHIFTED: bool, V: Virial>(sys: &mut System, stream: u8) -> V {
-    let s = Split::of(sys, false, stream);
+pub(crate) fn full<const SHIFTED: bool, V: Virial>(s: FullInputs) -> V {
     let add = s.add;
     let out = zeroed(s.full, s.q.len());
     s.pairs.sweep_noisy(
@@ -100,9 +83,9 @@ fn full_with<const SHIFTED: bool, V: Virial>(sys: &mut System, stream: u8) -> V 
 /// [`full`] while the pair table is filled ([`PairTable::collect_then`]): each run's normals
 /// and forces while it is in cache, in the order of a pass over the table, so the same
 /// numbers. For a periodic box without walls, not recording impulses, with the list built for
-/// the current positions; leaves the table filled.
-pub(crate) fn full_while_filling(sys: &mut System, stream: u8) {
-    let s = Split::of(sys, true, stream);
+/// the current positions and `s.add` made with the bound of the positions; leaves the table
+/// filled.
+pub(crate) fn full_while_filling(s: FullInputs) {
     let noise = s.noise.map(|noise| noise.of(Bound::of(s.q)));
     let add = s.add;
     // SAFETY: the pairs of the fill, whose bound (`Bound::of(q)`) made `add`.
@@ -113,53 +96,17 @@ pub(crate) fn full_while_filling(sys: &mut System, stream: u8) {
     s.pairs.collect_then(s.list, s.q, s.bx, s.params, out, each);
 }
 
-/// A system taken apart for a full-force evaluation: its pair table and what fills it, the
-/// force totals, the forces and the noise.
-struct Split<'a> {
-    pairs: &'a mut PairTable,
-    list: &'a VerletList,
-    q: &'a [Vec3],
-    bx: &'a PeriodicBox,
-    params: &'a Params,
-    full: &'a mut Vec<Vec3>,
-    add: Full<'a>,
-    noise: Option<Noise<'a>>,
-}
-
-impl<'a> Split<'a> {
-    /// `sys` apart, with the totals indexed by the bound of the table as it is, or, when
-    /// `refill`, as a fill from the current positions will make it.
-    fn of(sys: &'a mut System, refill: bool, stream: u8) -> Self {
-        let System {
-            ref mut pairs,
-            ref list,
-            ref q,
-            ref bx,
-            ref p,
-            ref inv_mass,
-            ref kind,
-            ref id,
-            ref params,
-            ref mut full,
-            seed,
-            step,
-            dt,
-            ..
-        } = *sys;
-        let bound = if refill { Bound::of(q) } else { pairs.bound() };
-        let add = Full::new(bound, params, dt, (p, inv_mass, kind));
-        let noise = add.noise(seed, step, stream, id);
-        Split {
-            pairs,
-            list,
-            q,
-            bx,
-            params,
-            full,
-            add,
-            noise,
-        }
-    }
+/// What a full-force evaluation reads and writes: the pair table and what fills it, the force
+/// totals, the pair forces and the noise.
+pub(crate) struct FullInputs<'a> {
+    pub(crate) pairs: &'a mut PairTable,
+    pub(crate) list: &'a VerletList,
+    pub(crate) q: &'a [Vec3],
+    pub(crate) bx: &'a PeriodicBox,
+    pub(crate) params: &'a Params,
+    pub(crate) full: &'a mut Vec<Vec3>,
+    pub(crate) add: Full<'a>,
+    pub(crate) noise: Option<Noise<'a>>,
 }
 
 /// The sum of the full DPD forces into per-particle totals, pair by pair: what [`full`] does
@@ -265,42 +212,4 @@ pub fn full_pair_force(conservative: f64, gamma: f64, noise: f64, wr: f64, u: f6
         f += noise * wr * z;
     }
     f
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::init::equilibrium_box;
-    use crate::reference::VelocityVerlet;
-
-    /// Forces summed run by run while the table is filled are bit for bit those of a pass
-    /// over the filled table, on one thread and on several (20 000 particles: above the size
-    /// where scans and pair passes split).
-    #[test]
-    fn forces_summed_while_filling_equal_a_pass_over_the_table() {
-        for threads in [1, 3] {
-            crate::on_threads(threads, || {
-                let params = Params::builder().build().unwrap();
-                let mut sys = equilibrium_box(params, 20_000, 3.0, 7)
-                    .unwrap()
-                    .dt(0.04)
-                    .skin(0.0)
-                    .build()
-                    .unwrap();
-                sys.advance(&VelocityVerlet, 3).unwrap();
-                sys.positions_changed();
-                sys.ensure_conservative();
-                let filled_c = sys.conservative.clone();
-                sys.positions_changed();
-                sys.ensure_full(1);
-                let filled_f = sys.full.clone();
-                let mut pass = Vec::new();
-                conservative(&sys.pairs, &sys.params, &sys.kind, &mut pass);
-                assert_eq!(pass, filled_c, "conservative, {threads} threads");
-                full(&mut sys, 1);
-                assert_eq!(sys.full, filled_f, "full, {threads} threads");
-                assert!(filled_f.iter().any(|f| f.norm() > 0.0));
-            });
-        }
-    }
 }

@@ -22,7 +22,6 @@ mod disjoint;
 pub mod error;
 pub mod flow;
 pub mod force;
-mod guard;
 pub mod init;
 mod lanes;
 pub mod neighbour;

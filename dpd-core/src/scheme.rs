@@ -1,6 +1,7 @@
-//! The `Scheme` trait and the run-time interpreter of a stage sequence (the guarded step that
-//! detects blow-ups is in `guard.rs`).
+//! The `Scheme` trait, [`System::advance`] and the run-time interpreter of a stage sequence
+//! (the guarded step that detects blow-ups is in `system/guard.rs`).
 
+use crate::error::BlowUp;
 use crate::flow::{bbk, drift, full_force, kick, ou, trotter};
 use crate::system::System;
 use dpd_ir::{Diagnostic, Flow, Options, Program, Stage};
@@ -50,6 +51,16 @@ impl<S: Scheme + ?Sized> Scheme for Box<S> {
     }
     fn program(&self) -> Option<&Program> {
         (**self).program()
+    }
+}
+
+impl System {
+    /// Take `steps` steps of `scheme`, each guarded: a step that produces a non-finite position
+    /// or momentum, or that may have moved a particle by more than half the shortest box edge
+    /// (the sum over its drifts of the largest drift length exceeds it), is undone and
+    /// reported; the system is then in the state after the last good step.
+    pub fn advance<S: Scheme + ?Sized>(&mut self, scheme: &S, steps: u64) -> Result<(), BlowUp> {
+        self.guarded_steps(steps, scheme.name(), |sys| scheme.step(sys))
     }
 }
 

@@ -14,7 +14,6 @@ mod vacf;
 pub use average::{block_mean, Running, ThermoAverages, ThermoSummary};
 pub use profile::{fit_line, write_profile_csv, Profile, ProfileRow};
 pub use rdf::Rdf;
-pub(crate) use stress::ImpulseVirial;
 pub use stress::{
     stop_recording, stress, ShearViscosity, Stress, ViscositySummary, VISCOSITY_BLOCKS,
 };

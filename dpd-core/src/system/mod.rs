@@ -2,10 +2,8 @@
 
 use crate::boundary::{LeesEdwards, PeriodicBox};
 use crate::error::{finite_vectors, ParamError};
-use crate::force;
 use crate::neighbour::VerletList;
-use crate::observe::ImpulseVirial;
-use crate::pairs::{Bound, PairTable, Run};
+use crate::pairs::PairTable;
 use crate::parallel::on_all_threads;
 use crate::params::Params;
 use crate::stamp::{Generation, Stamp};
@@ -84,12 +82,18 @@ pub struct System {
     pub(crate) counters: Counters,
     /// Sum over this step's drifts of the largest single-particle drift length.
     pub(crate) drift_bound: f64,
-    pub(crate) backup: crate::guard::Backup,
+    /// The undo copy of the guarded step, kept to reuse its allocations.
+    pub(crate) backup: Backup,
 }
 
 mod builder;
+mod forces;
+mod guard;
+mod impulses;
 
 pub use builder::SystemBuilder;
+use guard::Backup;
+pub(crate) use impulses::ImpulseVirial;
 
 impl System {
     pub fn len(&self) -> usize {
@@ -344,66 +348,6 @@ impl System {
             permute(&mut w.velocity_x, &order);
         }
         self.list.invalidate();
-    }
-
-    pub(crate) fn ensure_conservative(&mut self) {
-        if self.conservative_at.is_fresh(self.positions) {
-            return;
-        }
-        if !self.fills_plainly() {
-            self.ensure_pairs();
-            force::conservative(
-                &self.pairs,
-                &self.params,
-                &self.kind,
-                &mut self.conservative,
-            );
-        } else {
-            // The forces of each run summed while the run is in cache, in the order of a pass
-            // over the table: the same numbers.
-            self.prepare_list();
-            let out = force::zeroed(&mut self.conservative, self.kind.len());
-            let add = force::Conservative::new(Bound::of(&self.q), &self.params, &self.kind);
-            // A plain loop: through `Run::sweep` (AVX2-compiled, as the full forces are) ABOBA
-            // ran 3 % more instructions.
-            // SAFETY: the runs of the fill, whose bound (`Bound::of(q)`) made `add`.
-            let force = |pair: &_, fi: &mut _, fj: &mut _| unsafe { add.pair(pair, fi, fj) };
-            let each = |run: Run<Vec3>| run.for_each(force);
-            self.pairs
-                .collect_then(&self.list, &self.q, &self.bx, &self.params, out, each);
-            self.pairs_filled();
-        }
-        self.conservative_at = Stamp::at(self.positions);
-        self.counters.force_evaluations += 1;
-    }
-
-    /// Full forces for an F stage: reused while positions are unchanged, otherwise evaluated
-    /// at the current momenta with the noise of `stream` in the current step.
-    pub(crate) fn ensure_full(&mut self, stream: u8) {
-        if self.full_at.is_fresh(self.positions) {
-            return;
-        }
-        if self.fills_plainly() {
-            self.prepare_list();
-            force::full_while_filling(self, stream);
-            self.full_virial = None;
-            self.pairs_filled();
-        } else {
-            self.ensure_pairs();
-            force::full(self, stream);
-        }
-        self.full_at = Stamp::at(self.positions);
-        self.counters.force_evaluations += 1;
-    }
-
-    /// Whether a force evaluation may fill the pair table and apply the forces run by run
-    /// ([`PairTable::collect_then`]): the table is stale, the box is periodic without walls,
-    /// and no pair impulses are being recorded.
-    fn fills_plainly(&self) -> bool {
-        !self.pairs_at.is_fresh(self.positions)
-            && self.shear.is_none()
-            && self.walls.is_none()
-            && self.impulses.is_none()
     }
 }
 

@@ -1,12 +1,11 @@
-//! The guarded step: a step that blows up is undone, and the state before it is kept.
+//! The guarded step: a step that blows up is undone, and the state before it is kept
+//! ([`System::advance`] runs the steps of a scheme through it).
 
+use super::{ImpulseVirial, System};
 use crate::boundary::LeesEdwards;
 use crate::error::BlowUp;
-use crate::observe::ImpulseVirial;
 use crate::parallel::on_all_threads;
-use crate::scheme::Scheme;
 use crate::stamp::Stamp;
-use crate::system::System;
 use crate::{Tensor, Vec3};
 use rayon::prelude::*;
 
@@ -25,20 +24,27 @@ pub(crate) struct Backup {
 }
 
 impl System {
-    /// Take `steps` steps of `scheme`, each guarded: a step that produces a non-finite position
-    /// or momentum, or that may have moved a particle by more than half the shortest box edge
-    /// (the sum over its drifts of the largest drift length exceeds it), is undone and
-    /// reported; the system is then in the state after the last good step.
-    pub fn advance<S: Scheme + ?Sized>(&mut self, scheme: &S, steps: u64) -> Result<(), BlowUp> {
+    /// Take `steps` steps with `step`, each guarded: a step that produces a non-finite
+    /// position or momentum, or that may have moved a particle by more than half the shortest
+    /// box edge (the sum over its drifts of the largest drift length exceeds it), is undone
+    /// and reported as a blow-up of `scheme`; the system is then in the state after the last
+    /// good step.
+    pub(crate) fn guarded_steps(
+        &mut self,
+        steps: u64,
+        scheme: &str,
+        mut step: impl FnMut(&mut System),
+    ) -> Result<(), BlowUp> {
         let mut backup = std::mem::take(&mut self.backup);
-        let result = (0..steps).try_for_each(|_| self.guarded_step(scheme, &mut backup));
+        let result = (0..steps).try_for_each(|_| self.guarded_step(scheme, &mut step, &mut backup));
         self.backup = backup;
         result
     }
 
-    fn guarded_step<S: Scheme + ?Sized>(
+    fn guarded_step(
         &mut self,
-        scheme: &S,
+        scheme: &str,
+        step: &mut impl FnMut(&mut System),
         backup: &mut Backup,
     ) -> Result<(), BlowUp> {
         copy(&mut backup.q, &self.q);
@@ -52,7 +58,7 @@ impl System {
         backup.shear = self.shear;
         backup.impulses = self.impulses;
         self.drift_bound = 0.0;
-        scheme.step(self);
+        step(self);
         let reason = if !self.drift_bound.is_finite() || !finite(&self.q) || !finite(&self.p) {
             Some("a position or momentum became non-finite".to_string())
         } else if self.drift_bound > 0.5 * self.bx.min_length() {
@@ -83,7 +89,7 @@ impl System {
                 self.impulses = backup.impulses;
                 Err(BlowUp {
                     step: self.step,
-                    scheme: scheme.name().to_string(),
+                    scheme: scheme.to_string(),
                     reason,
                 })
             }

@@ -1,0 +1,6 @@
+#!/usr/bin/env bash
+# dpd-core's top-level modules import one another without a cycle (issue 24): the state sits
+# below the flows, schemes and observables that use it (docs/architecture.md, "Layers").
+set -euo pipefail
+cd "$(dirname "$0")/.."
+python3 scripts/module_graph.py dpd-core/src
