@@ -1,5 +1,5 @@
 use crate::parallel::on_all_threads;
-use crate::system::System;
+use crate::system::{Motion, System};
 use crate::Vec3;
 use rayon::prelude::*;
 
@@ -14,29 +14,34 @@ use rayon::prelude::*;
 /// detection, and drops every position-dependent cache.
 #[inline]
 pub fn drift(sys: &mut System, h: f64) {
-    let bx = sys.bx;
-    let max2 = match (&mut sys.shear, &sys.walls) {
-        (None, None) => move_particles(sys, h, |q, _, _| *q = bx.wrap(*q)),
+    let Motion {
+        bx,
+        shear,
+        walls,
+        q,
+        p,
+        inv_mass,
+        mass,
+    } = sys.motion();
+    let particles = (q, p, inv_mass, mass);
+    let max2 = match (shear, walls) {
+        (None, None) => move_particles(particles, h, |q, _, _| *q = bx.wrap(*q)),
         (Some(le), _) => {
             le.advance(&bx, h);
             let le = *le;
             let kick = le.image_velocity(&bx);
-            move_particles(sys, h, |q, p, m| {
+            move_particles(particles, h, |q, p, m| {
                 let (wrapped, n) = le.wrap(&bx, *q);
                 *q = wrapped;
                 p.x -= n * m * kick;
             })
         }
-        (None, Some(w)) => {
-            let walls = w.walls;
-            move_particles(sys, h, |q, p, m| {
-                *q = bx.wrap(*q);
-                walls.reflect(q, p, m);
-            })
-        }
+        (None, Some(walls)) => move_particles(particles, h, |q, p, m| {
+            *q = bx.wrap(*q);
+            walls.reflect(q, p, m);
+        }),
     };
-    sys.drift_bound += max2.sqrt();
-    sys.positions_changed();
+    sys.moved(max2.sqrt());
 }
 
 /// `q_i += h p_i / m_i`, then `wrap(q_i, p_i, m_i)` for each mobile particle (frozen ones,
@@ -45,7 +50,7 @@ pub fn drift(sys: &mut System, h: f64) {
 /// largest displacement does not depend on the order.
 #[inline(always)]
 fn move_particles(
-    sys: &mut System,
+    (q, p, inv_mass, mass): (&mut [Vec3], &mut [Vec3], &[f64], &[f64]),
     h: f64,
     wrap: impl Fn(&mut Vec3, &mut Vec3, f64) + Sync,
 ) -> f64 {
@@ -89,7 +94,6 @@ fn move_particles(
             a.max(b)
         }
     };
-    let (q, p, inv_mass, mass) = (&mut sys.q, &mut sys.p, &sys.inv_mass, &sys.mass);
     if on_all_threads(q.len()) {
         q.par_chunks_mut(4096)
             .zip(p.par_chunks_mut(4096))

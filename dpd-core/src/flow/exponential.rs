@@ -1,7 +1,8 @@
+use crate::pairs::Noise;
 use crate::pairs::PairTable;
 use crate::params::Params;
 use crate::rng::pair_normal;
-use crate::system::System;
+use crate::system::{PairState, System};
 use crate::{Tensor, Vec3};
 
 /// How [`exponential_velocity`] integrates the random force over the step.
@@ -70,24 +71,20 @@ fn phi1(x: f64) -> f64 {
 /// (recording adds a second pass). For `h <= 0` the noise is dropped (there is no
 /// backward-in-time stochastic update).
 pub fn exponential_velocity(sys: &mut System, h: f64, stream: u8, noise: EtdNoise) {
-    sys.ensure_pairs();
-    sys.counters.force_evaluations += 1;
+    sys.count_force_evaluation();
     // Pairs across a Lees-Edwards boundary or with a moving wall particle carry a velocity
     // shift (`PairTable::shifts`).
     let shifted = sys.shifted_pairs();
-    let recording = sys.impulses.is_some();
-    let System {
-        ref pairs,
-        ref mut p,
-        ref inv_mass,
-        ref kind,
-        ref id,
-        ref params,
+    let recording = sys.recording_impulses();
+    let PairState {
+        pairs,
+        p,
+        inv_mass,
+        kind,
+        params,
+        noise: Noise { seed, step, id, .. },
         body_force,
-        seed,
-        step,
-        ..
-    } = *sys;
+    } = sys.pair_state(stream);
     let n = p.len();
     let (gamma, sigma) = (params.gamma(), params.sigma());
     // force: F^C + F^D (+ F^ext); rate: sum gamma w_D e_alpha^2 (divided by m_i below);
@@ -135,16 +132,14 @@ pub fn exponential_velocity(sys: &mut System, h: f64, stream: u8, noise: EtdNois
         }
     }
     let factors = |i: usize| Factors::new(rate[i] * inv_mass[i], h, noise);
-    if recording {
-        let virial = pair_virial(pairs, &pair_forces, params, kind, h, factors);
-        if let Some(impulses) = &mut sys.impulses {
-            impulses.add(virial);
-        }
-    }
+    let virial = recording.then(|| pair_virial(pairs, &pair_forces, params, kind, h, factors));
     for (i, p) in p.iter_mut().enumerate() {
         let c = factors(i);
         // Momentum form: p = m u, so the 1/m_i of g and b cancels.
         *p += c.drift.component_mul(&force[i]) + c.spread.component_mul(&kick[i]);
+    }
+    if let Some(virial) = virial {
+        sys.record_impulses(virial);
     }
 }
 

@@ -23,8 +23,8 @@ fn add_scaled(p: &mut [Vec3], h: f64, f: &[Vec3]) {
 /// are unchanged.
 #[inline]
 pub fn kick(sys: &mut System, h: f64) {
-    sys.ensure_conservative();
-    add_scaled(&mut sys.p, h, &sys.conservative);
+    let (p, force) = sys.momenta_and_conservative();
+    add_scaled(p, h, force);
     sys.apply_body_force(h);
 }
 
@@ -39,10 +39,8 @@ pub fn kick(sys: &mut System, h: f64) {
 /// dissipative and random pair virial of the evaluation it uses.
 #[inline]
 pub fn full_force(sys: &mut System, h: f64, stream: u8) {
-    sys.ensure_full(stream);
-    add_scaled(&mut sys.p, h, &sys.full);
+    let (p, force) = sys.momenta_and_full(stream);
+    add_scaled(p, h, force);
     sys.apply_body_force(h);
-    if let Some(impulses) = &mut sys.impulses {
-        impulses.add_kick(h, sys.full_virial.as_ref());
-    }
+    sys.record_full_kick(h);
 }

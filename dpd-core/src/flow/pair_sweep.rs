@@ -4,10 +4,10 @@ use super::expm1::expm1_within;
 use crate::lanes::Lanes;
 #[cfg(target_arch = "x86_64")]
 use crate::lanes::{F64x4, F64x4x2, Vector};
-use crate::pairs::{ByPair, Noise, Pair, Two, Virial};
+use crate::pairs::{ByPair, Pair, Two, Virial};
 use crate::params::Repulsion;
 use crate::potential::Soft;
-use crate::system::System;
+use crate::system::{PairState, System};
 use crate::{Tensor, Vec3};
 use dpd_ir::SweepOrder;
 
@@ -69,21 +69,22 @@ pub struct Change {
 /// and recording switches are resolved here, once per sweep, not per pair.
 #[inline(always)]
 fn sweep(sys: &mut System, stream: u8, order: SweepOrder, changes: impl Changes) {
-    sys.ensure_pairs();
-    let recorded = match (sys.shifted_pairs(), sys.impulses.is_some()) {
+    let (shifted, recording) = (sys.shifted_pairs(), sys.recording_impulses());
+    let state = sys.pair_state(stream);
+    let recorded = match (shifted, recording) {
         (false, false) => {
-            sweep_with::<false, ()>(sys, stream, order, changes);
+            sweep_with::<false, ()>(state, order, changes);
             None
         }
         (true, false) => {
-            sweep_with::<true, ()>(sys, stream, order, changes);
+            sweep_with::<true, ()>(state, order, changes);
             None
         }
-        (false, true) => Some(sweep_with::<false, Tensor>(sys, stream, order, changes)),
-        (true, true) => Some(sweep_with::<true, Tensor>(sys, stream, order, changes)),
+        (false, true) => Some(sweep_with::<false, Tensor>(state, order, changes)),
+        (true, true) => Some(sweep_with::<true, Tensor>(state, order, changes)),
     };
-    if let (Some(impulses), Some(virial)) = (&mut sys.impulses, recorded) {
-        impulses.add(virial);
+    if let Some(virial) = recorded {
+        sys.record_impulses(virial);
     }
 }
 
@@ -93,28 +94,20 @@ impl<F: Fn(Particles, &[Pair], &[f64], &mut Vec<Change>) + Sync + Copy> Changes 
 
 #[inline(always)]
 fn sweep_with<const SHIFTED: bool, V: Virial>(
-    sys: &mut System,
-    stream: u8,
+    state: PairState,
     order: SweepOrder,
     changes: impl Changes,
 ) -> V {
-    let System {
-        ref mut pairs,
-        ref mut p,
-        ref inv_mass,
-        ref kind,
-        ref id,
-        ref params,
-        seed,
-        step,
+    let PairState {
+        pairs,
+        p,
+        inv_mass,
+        kind,
+        params,
+        noise,
         ..
-    } = *sys;
-    let noise = (params.sigma() > 0.0).then_some(Noise {
-        seed,
-        step,
-        stream,
-        id,
-    });
+    } = state;
+    let noise = (params.sigma() > 0.0).then_some(noise);
     let inv_mass = pairs.read(inv_mass);
     let particles = Particles {
         inv_mass,
@@ -306,7 +299,7 @@ unsafe fn ou_lanes<const N: usize, V: Vector<N>>(
 /// Evaluated with `expm1`, so `tau h -> 0` and `tau h -> infinity` are both accurate.
 #[inline]
 pub fn ou(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
-    let (gamma, kbt) = (sys.params.gamma(), sys.params.kbt());
+    let (gamma, kbt) = (sys.params().gamma(), sys.params().kbt());
     if gamma == 0.0 {
         return;
     }
@@ -327,7 +320,7 @@ pub fn ou(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
 /// `s_n = sigma w_R mu`; that is `u_new - u = (-tau h u + s_n sqrt(h) R) / (1 + tau h/2)`.
 #[inline]
 pub fn bbk(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
-    let (gamma, sigma) = (sys.params.gamma(), sys.params.sigma());
+    let (gamma, sigma) = (sys.params().gamma(), sys.params().sigma());
     if gamma == 0.0 {
         return;
     }
@@ -367,8 +360,8 @@ pub fn bbk_update(gamma: f64, sigma: f64, h: f64, root_h: f64, wr: f64, mu: f64,
 /// `f = a_ij (1 - r/r_c)` and `phi1(x) = (1 - exp(-x)) / x`, `phi1(0) = 1`.
 #[inline]
 pub fn trotter(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
-    let (gamma, kbt) = (sys.params.gamma(), sys.params.kbt());
-    sys.counters.force_evaluations += 1;
+    let (gamma, kbt) = (sys.params().gamma(), sys.params().kbt());
+    sys.count_force_evaluation();
     // SAFETY (both): `sweep` hands the changes only runs of the table that made `with`.
     let change = move |with: Particles, pair: &Pair, r: f64| {
         let f = unsafe { with.soft(pair) }.force(pair.w);

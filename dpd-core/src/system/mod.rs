@@ -90,10 +90,12 @@ mod builder;
 mod forces;
 mod guard;
 mod impulses;
+mod views;
 
 pub use builder::SystemBuilder;
 use guard::Backup;
 pub(crate) use impulses::ImpulseVirial;
+pub(crate) use views::{Motion, PairState};
 
 impl System {
     pub fn len(&self) -> usize {
@@ -123,22 +125,6 @@ impl System {
     /// The external force on mobile particles, if any.
     pub fn body_force(&self) -> Option<Vec3> {
         self.body_force
-    }
-    /// Whether some pairs carry a velocity shift (`PairTable::shifts`): under shear or with walls.
-    pub(crate) fn shifted_pairs(&self) -> bool {
-        self.shear.is_some() || self.walls.is_some()
-    }
-    /// `p_i += h g` for every mobile particle, `g` the body force (nothing without one). The
-    /// sub-flows that apply the conservative force (B, F, T) call it, so the body force is part
-    /// of every letter that carries `F^C`, never of the cached forces.
-    pub(crate) fn apply_body_force(&mut self, h: f64) {
-        if let Some(g) = self.body_force {
-            for (p, &im) in self.p.iter_mut().zip(&self.inv_mass) {
-                if im > 0.0 {
-                    *p += h * g;
-                }
-            }
-        }
     }
     pub fn positions(&self) -> &[Vec3] {
         &self.q
