@@ -1,10 +1,18 @@
 //! `dpd design FAMILY`: solve a family's order conditions for its highest orders, then
-//! minimise the error norm with the freedom left (see `dpd_ir::design`).
+//! minimise the error norm with the freedom left (see `dpd_ir::design`); with `--measure`,
+//! sweep the best members and ABOBA on a scene and set the predicted order against the
+//! measured one.
 
-use super::{bad_input, print_json};
-use dpd::design::{design, Member};
+use super::{bad_input, print_json, sweep};
+use dpd::design::{design, Design, Member, Objective};
 use dpd::lang::compile_family;
+use dpd_measure::{Overrides, Scene, SchemeList, SchemeSummary, SweepOverrides};
+use serde_json::{json, Value};
+use std::path::PathBuf;
 use std::process::ExitCode;
+
+/// The scheme the measured candidates are compared with (efficiency 1).
+const REFERENCE: &str = "aboba";
 
 #[derive(Debug, clap::Args)]
 pub struct Args {
@@ -17,6 +25,19 @@ pub struct Args {
     /// Print one JSON object on stdout
     #[arg(long)]
     json: bool,
+    /// Sweep the best members (see --top) and ABOBA on the scene (--scene and the scene
+    /// flags; the dt grid from its [sweep] table) and compare predicted with measured ranks
+    #[arg(long)]
+    measure: bool,
+    /// How many members --measure sweeps: those of the highest orders with the smallest
+    /// error norm, solutions and notable points alike
+    #[arg(long, default_value_t = 3)]
+    top: usize,
+    /// Directory of --measure's sweep (design.json, resumable; CSV; SVG plots)
+    #[arg(long, value_name = "DIR", default_value = "results/design")]
+    out: PathBuf,
+    #[command(flatten)]
+    scene: Overrides,
 }
 
 pub fn main(args: Args) -> ExitCode {
@@ -53,21 +74,26 @@ pub fn main(args: Args) -> ExitCode {
             args.family
         ));
     };
-    if args.json {
+    if args.json && !args.measure {
         return print_json(&d);
     }
-    let inv = |p: Option<u32>| p.map_or("-".to_string(), |p| p.to_string());
-    println!(
-        "family: {}\ngeneric orders: deterministic {}, invariant measure {}; minimising the {:?} norm",
-        d.family,
-        d.generic_orders.0,
-        inv(d.generic_orders.1),
-        d.objective
-    );
-    println!("solutions (highest orders, best first):");
-    print_members(&d.solutions);
-    println!("notable points:");
-    print_members(&d.notable);
+    if !args.json {
+        let inv = |p: Option<u32>| p.map_or("-".to_string(), |p| p.to_string());
+        println!(
+            "family: {}\ngeneric orders: deterministic {}, invariant measure {}; minimising the {:?} norm",
+            d.family,
+            d.generic_orders.0,
+            inv(d.generic_orders.1),
+            d.objective
+        );
+        println!("solutions (highest orders, best first):");
+        print_members(&d.solutions);
+        println!("notable points:");
+        print_members(&d.notable);
+    }
+    if args.measure {
+        return measure(&d, &args);
+    }
     ExitCode::SUCCESS
 }
 
@@ -91,4 +117,152 @@ fn print_members(members: &[Member]) {
             m.pair_distance_evaluations_per_step
         );
     }
+}
+
+/// The norm a design minimises, of a member (a missing norm, order above the highest
+/// checked, counts as zero).
+fn norm(m: &Member, objective: Objective) -> f64 {
+    match objective {
+        Objective::Deterministic => m.deterministic_error_norm,
+        Objective::InvariantMeasure => m.invariant_measure_error_norm,
+    }
+    .unwrap_or(0.0)
+}
+
+/// The `top` members of the highest orders with the smallest norms, one per program.
+fn candidates(d: &Design, top: usize) -> Vec<&Member> {
+    let orders = |m: &Member| (m.deterministic_order, m.invariant_measure_order);
+    let Some(best) = d.solutions.iter().chain(&d.notable).map(orders).max() else {
+        return Vec::new();
+    };
+    let mut members: Vec<&Member> = d
+        .solutions
+        .iter()
+        .chain(&d.notable)
+        .filter(|m| orders(m) == best)
+        .collect();
+    members.sort_by(|a, b| norm(a, d.objective).total_cmp(&norm(b, d.objective)));
+    let mut seen = std::collections::HashSet::new();
+    members.retain(|m| seen.insert(m.program.clone()));
+    members.truncate(top);
+    members
+}
+
+/// Ranks (1 = best) of `values`, largest first; `None` values rank last, unranked.
+fn ranks_descending(values: &[Option<f64>]) -> Vec<Option<usize>> {
+    values
+        .iter()
+        .map(|v| v.map(|x| 1 + values.iter().flatten().filter(|&&y| y > x).count()))
+        .collect()
+}
+
+fn measure(d: &Design, args: &Args) -> ExitCode {
+    if args.top == 0 {
+        return bad_input("invalid --top = 0: at least one member must be measured");
+    }
+    let chosen = candidates(d, args.top);
+    let mut scene = match Scene::resolve(&args.scene) {
+        Ok(scene) => scene,
+        Err(e) => return bad_input(e),
+    };
+    let mut schemes: Vec<String> = chosen.iter().map(|m| m.program.clone()).collect();
+    schemes.push(REFERENCE.to_string());
+    let sweep_keys = SweepOverrides {
+        schemes: Some(SchemeList(schemes.clone())),
+        reference: Some(REFERENCE.to_string()),
+        ..Default::default()
+    };
+    if let Err(e) = scene.apply_sweep(&sweep_keys) {
+        return bad_input(e);
+    }
+    let json_path = args.out.join("design.json");
+    let (results, written) = match sweep::measure(&scene, &json_path, &args.out, false) {
+        Ok(done) => done,
+        Err(code) => return code,
+    };
+    let summary = |scheme: &str| results.summary.iter().find(|s| s.scheme == scheme);
+    // Predicted: the norm of each candidate and of the reference.
+    let reference_norm = dpd::schemes::lookup(REFERENCE)
+        .ok()
+        .and_then(|e| e.scheme().program().map(|p| p.analysis()))
+        .and_then(|a| match d.objective {
+            Objective::Deterministic => a.deterministic_error_norm,
+            Objective::InvariantMeasure => a.invariant_measure_error_norm,
+        });
+    let mut norms: Vec<Option<f64>> = chosen.iter().map(|m| Some(norm(m, d.objective))).collect();
+    norms.push(reference_norm);
+    let predicted = ranks_descending(&norms.iter().map(|n| n.map(|x| -x)).collect::<Vec<_>>());
+    let efficiency: Vec<Option<f64>> = schemes
+        .iter()
+        .map(|s| summary(s).and_then(|s| s.efficiency))
+        .collect();
+    let measured = ranks_descending(&efficiency);
+    let rows: Vec<Value> = schemes
+        .iter()
+        .enumerate()
+        .map(|(k, scheme)| {
+            let s: Option<&SchemeSummary> = summary(scheme);
+            json!({
+                "scheme": scheme,
+                "error_norm": norms[k],
+                "predicted_rank": predicted[k],
+                "critical_dt_10": s.and_then(|s| s.critical_dt_10),
+                "critical_dt_1": s.and_then(|s| s.critical_dt_1),
+                "efficiency": efficiency[k],
+                "measured_rank": measured[k],
+            })
+        })
+        .collect();
+    if args.json {
+        let mut value = match serde_json::to_value(d) {
+            Ok(v) => v,
+            Err(e) => return bad_input(format!("cannot serialise the design: {e}")),
+        };
+        for list in ["solutions", "notable"] {
+            for m in value[list].as_array_mut().into_iter().flatten() {
+                if let Some(row) = rows.iter().find(|r| r["scheme"] == m["program"]) {
+                    for key in ["critical_dt_10", "critical_dt_1", "efficiency"] {
+                        m[key] = row[key].clone();
+                    }
+                }
+            }
+        }
+        value["measured"] = Value::Array(rows);
+        value["sweep"] = json!(json_path.display().to_string());
+        let code = print_json(&value);
+        if let Err(e) = written {
+            eprintln!("dpd: error: {e}");
+            return ExitCode::FAILURE;
+        }
+        return code;
+    }
+    println!(
+        "measured on the scene ({} norm predicts: smaller is better; efficiency relative to {REFERENCE}, T_C or the scene's observable):",
+        match d.objective {
+            Objective::Deterministic => "deterministic",
+            Objective::InvariantMeasure => "invariant-measure",
+        }
+    );
+    let num = |v: &Value, digits: usize| {
+        v.as_f64()
+            .map_or("-".to_string(), |x| format!("{x:.digits$}"))
+    };
+    let rank = |v: &Value| v.as_u64().map_or("-".to_string(), |x| x.to_string());
+    println!(
+        "  {:>9} {:>9} {:>10} {:>10} {:>10} {:>8}  scheme",
+        "norm", "predicted", "dt_c 10 %", "dt_c 1 %", "efficiency", "measured"
+    );
+    for r in &rows {
+        println!(
+            "  {:>9} {:>9} {:>10} {:>10} {:>10} {:>8}  {}",
+            num(&r["error_norm"], 6),
+            rank(&r["predicted_rank"]),
+            num(&r["critical_dt_10"], 4),
+            num(&r["critical_dt_1"], 4),
+            num(&r["efficiency"], 3),
+            rank(&r["measured_rank"]),
+            r["scheme"].as_str().unwrap_or_default()
+        );
+    }
+    sweep::finish(&results, written, &scene)
 }

@@ -54,6 +54,30 @@ pub fn main_job() -> ExitCode {
 }
 
 fn execute(scene: &Scene, json: &Path, out: &Path, fresh: bool) -> ExitCode {
+    let (results, written) = match measure(scene, json, out, fresh) {
+        Ok(done) => done,
+        Err(code) => return code,
+    };
+    let w = sweep::spec(scene);
+    print!("{}", report::rows_table(&results.rows));
+    println!();
+    println!(
+        "critical dt: where the relative error of the {} first reaches 10 % / 1 %",
+        w.observable.name().replace('-', " ")
+    );
+    print!("{}", report::summary_table(&results.summary, &w.reference));
+    finish(&results, written, scene)
+}
+
+/// Run (or resume) the sweep of `scene` with a progress bar, keeping the results in `json`
+/// after every point, and write the CSV and plots into `out`: the results and the names of
+/// the files written (or why not). `Err` is the exit code of input that cannot run.
+pub fn measure(
+    scene: &Scene,
+    json: &Path,
+    out: &Path,
+    fresh: bool,
+) -> Result<(SweepResults, Result<Vec<String>, String>), ExitCode> {
     let w = sweep::spec(scene);
     let grid = w.grid();
     let ends: Vec<f64> = grid
@@ -67,10 +91,7 @@ fn execute(scene: &Scene, json: &Path, out: &Path, fresh: bool) -> ExitCode {
     let finished = if fresh {
         Vec::new()
     } else {
-        match load_finished(json, scene) {
-            Ok(points) => points,
-            Err(e) => return bad_input(e),
-        }
+        load_finished(json, scene).map_err(bad_input)?
     };
     let pending = sweep::pending(scene, &finished);
     let planned = pending.len() + finished.len();
@@ -84,7 +105,7 @@ fn execute(scene: &Scene, json: &Path, out: &Path, fresh: bool) -> ExitCode {
         json.display()
     );
     if let Err(e) = std::fs::create_dir_all(out) {
-        return bad_input(format!("cannot create {}: {e}", out.display()));
+        return Err(bad_input(format!("cannot create {}: {e}", out.display())));
     }
     let total: u64 = pending.iter().map(|j| scene.steps(j.dt)).sum();
     let bar = progress::bar(total, format!("{} points", pending.len()));
@@ -104,19 +125,18 @@ fn execute(scene: &Scene, json: &Path, out: &Path, fresh: bool) -> ExitCode {
         },
         on_point: &save,
     };
-    let results = match run_sweep(scene, finished, hooks) {
-        Ok(r) => r,
-        Err(e) => return bad_input(e),
-    };
+    let results = run_sweep(scene, finished, hooks).map_err(bad_input)?;
     bar.finish_and_clear();
     let written = write_outputs(&results, json, out);
-    print!("{}", report::rows_table(&results.rows));
-    println!();
-    println!(
-        "critical dt: where the relative error of the {} first reaches 10 % / 1 %",
-        w.observable.name().replace('-', " ")
-    );
-    print!("{}", report::summary_table(&results.summary, &w.reference));
+    Ok((results, written))
+}
+
+/// Report the files written and an interruption: the exit code of a finished sweep.
+pub fn finish(
+    results: &SweepResults,
+    written: Result<Vec<String>, String>,
+    scene: &Scene,
+) -> ExitCode {
     match written {
         Ok(files) => println!("wrote {}", files.join(", ")),
         Err(e) => {
