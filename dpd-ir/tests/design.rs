@@ -38,3 +38,25 @@ fn the_free_babab_family_is_minimised_over_its_parameter() {
         assert!(norm(best) <= norm(m) + 1e-12, "{best:?} vs {m:?}");
     }
 }
+
+/// Two parameters, one condition: the drift split `x` must be 1/2 for deterministic order 2,
+/// and the O split `c` then lowers the invariant-measure norm towards `c -> 0` (ABOBA, which
+/// the family cannot build: `O(0)` is refused). The solution is reported at `x = 1/2` exactly
+/// (found numerically next to it, where rounding hid the order-2 cancellation and order 1 was
+/// reported), and no member claims invariant-measure order 2 (a root of those conditions at
+/// `c ~ 1e-10` is not confirmed by the analysis there).
+#[test]
+fn solutions_next_to_a_fraction_are_reported_at_it() {
+    let f = compile_family(
+        "param x in 0..1; param c in 0..1; A(x) O(c) B(1/2) O(1 - c) B(1/2) A(1 - x)",
+    )
+    .unwrap();
+    let d = design(&f, &[]).unwrap();
+    let best = &d.solutions[0];
+    assert_eq!(best.parameters[0], ("x".to_string(), 0.5), "{best:?}");
+    assert_eq!(best.deterministic_order, 2, "{best:?}");
+    assert!(d
+        .solutions
+        .iter()
+        .all(|m| m.invariant_measure_order == Some(1)));
+}

@@ -19,7 +19,7 @@ mod solve;
 use crate::analysis::{order_residuals, Analysis};
 use crate::lang::{Family, Options};
 use serde::Serialize;
-use solve::{newton, rank, Residuals};
+use solve::{newton, rank, rationalise, Residuals};
 
 /// Highest deterministic order the design solves for.
 pub const MAX_DETERMINISTIC_ORDER: u32 = 6;
@@ -105,6 +105,11 @@ fn objective_norm(m: &Member, objective: Objective) -> f64 {
     .unwrap_or(0.0)
 }
 
+/// A member's (deterministic, invariant-measure) orders.
+fn orders(m: &Member) -> (u32, Option<u32>) {
+    (m.deterministic_order, m.invariant_measure_order)
+}
+
 /// Designs `family`; `extra` are further points to report (each one value per parameter).
 pub fn design(family: &Family, extra: &[Vec<f64>]) -> Option<Design> {
     let generic = member(family, &family.generic_point(), family.parameters.len())?;
@@ -139,7 +144,12 @@ pub fn design(family: &Family, extra: &[Vec<f64>]) -> Option<Design> {
         let mut found = None;
         for det in generic.deterministic_order..=best_det {
             let f = conditions(family, det, inv.unwrap_or(0));
-            let points = solve_all(&f, &starts, &bounds);
+            // A root the analysis does not confirm is dropped: the conditions vanish there only
+            // to within the solver's tolerance, e.g. next to a boundary where a stage vanishes.
+            let mut points = solve_all(&f, &starts, &bounds);
+            points.retain(|x| {
+                member(family, &rationalise(&f, x), 0).is_some_and(|m| orders(&m) >= (det, inv))
+            });
             if points.is_empty() {
                 break;
             }
@@ -150,10 +160,14 @@ pub fn design(family: &Family, extra: &[Vec<f64>]) -> Option<Design> {
         };
         let mut members: Vec<Member> = points
             .iter()
-            .filter_map(|x| member(family, x, x.len() - rank(&f, x)))
+            .filter_map(|x| member(family, &rationalise(&f, x), x.len() - rank(&f, x)))
             .collect();
         if members.iter().any(|m| m.freedom > 0) {
-            members = vec![minimise(family, &f, &members, &bounds, objective)?];
+            let best = minimise(family, &f, &members, &bounds, objective)?;
+            let x: Vec<f64> = best.parameters.iter().map(|(_, v)| *v).collect();
+            members = vec![member(family, &rationalise(&f, &x), best.freedom)
+                .filter(|m| orders(m) >= orders(&best))
+                .unwrap_or(best)];
         }
         members
             .sort_by(|a, b| objective_norm(a, objective).total_cmp(&objective_norm(b, objective)));
@@ -272,7 +286,8 @@ fn minimise(
                 let Some(m) = member(family, &x, best.freedom) else {
                     continue;
                 };
-                if value(&m) < value(&best) {
+                // a point where rounding hides the orders solved for is not a better member
+                if orders(&m) == orders(&best) && value(&m) < value(&best) {
                     best = m;
                     improved = true;
                 }

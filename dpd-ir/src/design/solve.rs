@@ -120,6 +120,35 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
+/// `x` with each coordinate replaced by the nearest fraction `p/q` (`q <= 24`) within `1e-6`
+/// when the residual there still vanishes (below [`CONVERGED`]): a solution found numerically
+/// next to a rational point (Strang's 1/2, a vanishing coefficient 0) is reported at that point,
+/// where the order analysis sees the exact cancellations. Coordinates are tried all together,
+/// then one at a time; `x` itself when no snap keeps the residual.
+pub fn rationalise(f: &Residuals, x: &[f64]) -> Vec<f64> {
+    let near = |v: f64| {
+        (1..=24)
+            .map(|q| (v * q as f64).round() / q as f64)
+            .find(|r| (r - v).abs() <= 1e-6 * (1.0 + v.abs()))
+    };
+    let vanishes = |y: &[f64]| f(y).is_some_and(|r| norm(&r) < CONVERGED);
+    let all: Vec<f64> = x.iter().map(|&v| near(v).unwrap_or(v)).collect();
+    if all != x && vanishes(&all) {
+        return all;
+    }
+    let mut y = x.to_vec();
+    for k in 0..x.len() {
+        if let Some(r) = near(x[k]) {
+            let mut trial = y.clone();
+            trial[k] = r;
+            if vanishes(&trial) {
+                y = trial;
+            }
+        }
+    }
+    y
+}
+
 /// Rank of the Jacobian at `x`: the number of independent conditions there (pivots above
 /// 1e-6 of the largest). The solution set has dimension `unknowns - rank` near `x`.
 pub fn rank(f: &Residuals, x: &[f64]) -> usize {
