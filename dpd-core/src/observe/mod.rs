@@ -15,7 +15,8 @@ pub use average::{block_mean, Running, ThermoAverages, ThermoSummary};
 pub use profile::{fit_line, write_profile_csv, Profile, ProfileRow};
 pub use rdf::Rdf;
 pub use stress::{
-    stop_recording, stress, ShearViscosity, Stress, ViscositySummary, VISCOSITY_BLOCKS,
+    state_dissipative_stress, stop_recording, stress, ShearViscosity, Stress, ViscositySummary,
+    VISCOSITY_BLOCKS,
 };
 pub use thermo::{kinetic_temperature, thermo, Thermo};
 pub use vacf::Vacf;

@@ -62,6 +62,34 @@ pub fn stress(sys: &mut System) -> Option<Stress> {
     })
 }
 
+/// The dissipative stress of the current state, `(gamma / V) sum_pairs w_D r (e . v_ij) e (x) e`
+/// (`v_ij` with the pair's image velocity across a sliding boundary or its wall velocity):
+/// the continuous-time formula evaluated at the sampled velocities. The random force, of zero
+/// mean given the state, is left out. An alternative to the applied impulses of [`stress`]:
+/// both have the same mean as `dt -> 0`, and at finite `dt` they differ (docs/papers.md, 003
+/// Table 6).
+pub fn state_dissipative_stress(sys: &mut System) -> Tensor {
+    let gamma = sys.params().gamma();
+    let rc = sys.params().rc();
+    let volume = sys.boundary().volume();
+    // The pairs first: a list build re-sorts the particles.
+    sys.ensure_pairs();
+    let v: Vec<Vec3> = sys
+        .p
+        .iter()
+        .zip(&sys.inv_mass)
+        .map(|(p, im)| p * *im)
+        .collect();
+    let shifts = sys.pairs.shifts();
+    let mut sum = Tensor::zeros();
+    for (k, pair) in sys.pairs.iter().enumerate() {
+        let dvx = shifts.map_or(0.0, |s| s[k]);
+        let u = pair.e.dot(&(v[pair.i as usize] - v[pair.j as usize])) + pair.e.x * dvx;
+        sum += (gamma * pair.wr * pair.wr * pair.r(rc) * u) * pair.e * pair.e.transpose();
+    }
+    sum / volume
+}
+
 /// Stop recording pair impulses (the sweeps no longer pay for it).
 pub fn stop_recording(sys: &mut System) {
     sys.impulses = None;
