@@ -69,9 +69,12 @@ pub fn compare(item: &Item, m: &Measurements) -> Vec<Comparison> {
     let mut out = Vec::new();
     for row in &item.published {
         for (quantity, text) in &row.values {
-            let Ok(printed) = parse_printed(text) else {
+            let Ok(mut printed) = parse_printed(text) else {
                 continue;
             };
+            if let Some(&relative) = item.published_precision.get(quantity) {
+                printed = printed.with_precision(relative);
+            }
             if printed == Printed::Absent {
                 continue;
             }
@@ -114,11 +117,13 @@ pub fn verdict(printed: Printed, measured: &Measured) -> Verdict {
         (Printed::BlowUp, Measured::Value(_)) | (Printed::Number { .. }, Measured::BlowUp) => {
             Verdict::Differs { sigmas: None }
         }
-        (Printed::Number { value, half_unit }, Measured::Value(v)) => number(value, half_unit, *v),
+        (Printed::Number { value, uncertainty }, Measured::Value(v)) => {
+            number(value, uncertainty, *v)
+        }
     }
 }
 
-fn number(published: f64, half_unit: f64, m: Value) -> Verdict {
+fn number(published: f64, uncertainty: f64, m: Value) -> Verdict {
     let Some(sigma) = m.sigma else {
         return Verdict::Unresolved {
             reason: "no error bar (a single run)".into(),
@@ -133,7 +138,7 @@ fn number(published: f64, half_unit: f64, m: Value) -> Verdict {
             ),
         };
     }
-    let combined = (sigma * sigma + half_unit * half_unit).sqrt();
+    let combined = (sigma * sigma + uncertainty * uncertainty).sqrt();
     let sigmas = (m.value - published).abs() / combined;
     if sigmas <= t {
         Verdict::Agrees {
@@ -271,5 +276,46 @@ mod tests {
             verdict(p, &Measured::BlowUp),
             Verdict::Differs { .. }
         ));
+    }
+
+    /// 003 Table 1's ABOBA: published 0.116, measured 0.1214 +- 0.0003 with ten runs. Beyond
+    /// the printed digits it differs; with the paper's stated precision (4 %: a reading of a
+    /// 15 % grid) it agrees, and DPD-S1 at gamma = 450 (0.0511 against 0.044) still differs.
+    #[test]
+    fn a_stated_precision_widens_the_published_uncertainty() {
+        let ten_runs = |v: f64| {
+            Measured::Value(Value {
+                value: v,
+                sigma: Some(0.0003),
+                dof: Some(9),
+            })
+        };
+        let p = parse_printed("0.116").unwrap();
+        assert!(matches!(
+            verdict(p, &ten_runs(0.1214)),
+            Verdict::Differs { .. }
+        ));
+        let read = p.with_precision(0.04);
+        assert_eq!(
+            read,
+            Printed::Number {
+                value: 0.116,
+                uncertainty: 0.04 * 0.116
+            }
+        );
+        assert!(matches!(
+            verdict(read, &ten_runs(0.1214)),
+            Verdict::Agrees { .. }
+        ));
+        let s1 = parse_printed("0.044").unwrap().with_precision(0.04);
+        assert!(matches!(
+            verdict(s1, &ten_runs(0.0511)),
+            Verdict::Differs { .. }
+        ));
+        // Printed digits coarser than the stated precision are kept.
+        assert_eq!(
+            parse_printed("0.5").unwrap().with_precision(0.01),
+            parse_printed("0.5").unwrap()
+        );
     }
 }

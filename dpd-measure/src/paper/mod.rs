@@ -15,7 +15,10 @@
 //!   strings exactly as printed (`"0.050"`, `"100.0%"`, `"-"` for no number, `"blow-up"` where
 //!   the paper says the scheme fails); the printed digits give the published uncertainty;
 //! - `not_compared`: quantities that are published but not comparable (e.g. CPU times of the
-//!   paper's machine), each with its reason in `notes`.
+//!   paper's machine), each with its reason in `notes`;
+//! - `[published_precision]`: quantity to a relative standard uncertainty of the published
+//!   values beyond their printed digits, where the paper says its numbers are approximate
+//!   (e.g. critical steps read off a coarse grid), with the reason in `notes`.
 //!
 //! An item without `[scene]` and `panels` (a table of coefficients, a figure that is not a
 //! DPD simulation) is listed with its notes and not run.
@@ -54,13 +57,28 @@ pub struct PublishedRow {
     pub values: BTreeMap<String, String>,
 }
 
-/// A printed value read back: the number with half a unit of its last printed digit as its
-/// uncertainty, or the paper's statement that the scheme blew up.
+/// A printed value read back: the number with its standard uncertainty (half a unit of its
+/// last printed digit, or the item's stated precision), or the paper's statement that the
+/// scheme blew up.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Printed {
-    Number { value: f64, half_unit: f64 },
+    Number { value: f64, uncertainty: f64 },
     BlowUp,
     Absent,
+}
+
+impl Printed {
+    /// With a relative standard uncertainty `relative` where that is larger than the printed
+    /// digits' (`[published_precision]` of an item).
+    pub fn with_precision(self, relative: f64) -> Printed {
+        match self {
+            Printed::Number { value, uncertainty } => Printed::Number {
+                value,
+                uncertainty: uncertainty.max(relative * value.abs()),
+            },
+            other => other,
+        }
+    }
 }
 
 /// The data of one item, as read from its file.
@@ -82,6 +100,8 @@ struct ItemFile {
     plot: Option<figure::PlotSpec>,
     #[serde(default)]
     not_compared: Vec<String>,
+    #[serde(default)]
+    published_precision: BTreeMap<String, f64>,
     #[serde(default)]
     published: Vec<PublishedRow>,
 }
@@ -111,6 +131,9 @@ pub struct Item {
     pub panels: Vec<String>,
     pub plot: Option<figure::PlotSpec>,
     pub not_compared: Vec<String>,
+    /// Relative standard uncertainty of the published values of a quantity, where larger than
+    /// half a unit of their last printed digit (see [`Printed::with_precision`]).
+    pub published_precision: BTreeMap<String, f64>,
     pub published: Vec<PublishedRow>,
 }
 
@@ -196,6 +219,7 @@ impl Item {
             panels: f.panels,
             plot: f.plot,
             not_compared: f.not_compared,
+            published_precision: f.published_precision,
             published: f.published,
         };
         item.validate()?;
@@ -221,6 +245,26 @@ impl Item {
                         ),
                     ));
                 }
+            }
+        }
+        for (quantity, &precision) in &self.published_precision {
+            if !measure::is_quantity(quantity) {
+                return Err(file_error(
+                    &self.path,
+                    format!(
+                        "published_precision {quantity:?} is not a measured quantity; valid: {}",
+                        measure::QUANTITIES.join(", ")
+                    ),
+                ));
+            }
+            if !(precision > 0.0 && precision < 1.0) {
+                return Err(file_error(
+                    &self.path,
+                    format!(
+                        "published_precision {quantity} = {precision}: a relative uncertainty \
+                         is a number in (0, 1), e.g. 0.04 for 4 %"
+                    ),
+                ));
             }
         }
         if self.kind == Kind::Figure && self.runs() && self.plot.is_none() {
@@ -297,7 +341,7 @@ pub fn parse_printed(text: &str) -> Result<Printed, String> {
     let decimals = number.split_once('.').map_or(0, |(_, d)| d.len());
     Ok(Printed::Number {
         value: value * scale,
-        half_unit: 0.5 * 10f64.powi(-(decimals as i32)) * scale,
+        uncertainty: 0.5 * 10f64.powi(-(decimals as i32)) * scale,
     })
 }
 
@@ -311,13 +355,13 @@ mod tests {
             parse_printed("0.050"),
             Ok(Printed::Number {
                 value: 0.05,
-                half_unit: 0.0005
+                uncertainty: 0.0005
             })
         );
-        let Ok(Printed::Number { value, half_unit }) = parse_printed("99.2%") else {
+        let Ok(Printed::Number { value, uncertainty }) = parse_printed("99.2%") else {
             panic!()
         };
-        assert!((value - 0.992).abs() < 1e-12 && (half_unit - 0.0005).abs() < 1e-12);
+        assert!((value - 0.992).abs() < 1e-12 && (uncertainty - 0.0005).abs() < 1e-12);
         assert_eq!(parse_printed("-"), Ok(Printed::Absent));
         assert_eq!(parse_printed("blow-up"), Ok(Printed::BlowUp));
         assert!(parse_printed("1,5").is_err());
@@ -371,6 +415,32 @@ mod shipped {
         );
         std::fs::write(&path, text).unwrap();
         Item::load(&path, "r").unwrap_err().to_string()
+    }
+
+    #[test]
+    fn a_published_precision_is_checked_by_name_and_range() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("t.toml");
+        let item = |precision: &str| {
+            let text = format!(
+                "kind = \"table\"\ntitle = \"t\"\ncitation = \"c\"\n\
+                 [published_precision]\n{precision}\n"
+            );
+            std::fs::write(&path, text).unwrap();
+            Item::load(&path, "r")
+        };
+        let ok = item("critical_dt_10 = 0.04").unwrap();
+        assert_eq!(ok.published_precision["critical_dt_10"], 0.04);
+        let e = item("critical_dt = 0.04").unwrap_err().to_string();
+        assert!(
+            e.contains("critical_dt") && e.contains("critical_dt_10"),
+            "{e}"
+        );
+        let e = item("critical_dt_10 = 4.0").unwrap_err().to_string();
+        assert!(
+            e.contains("critical_dt_10 = 4") && e.contains("(0, 1)"),
+            "{e}"
+        );
     }
 
     #[test]
