@@ -119,29 +119,24 @@ fn print_members(members: &[Member]) {
     }
 }
 
-/// The norm a design minimises, of a member (a missing norm, order above the highest
-/// checked, counts as zero).
-fn norm(m: &Member, objective: Objective) -> f64 {
-    match objective {
-        Objective::Deterministic => m.deterministic_error_norm,
-        Objective::InvariantMeasure => m.invariant_measure_error_norm,
-    }
-    .unwrap_or(0.0)
-}
-
 /// The `top` members of the highest orders with the smallest norms, one per program.
 fn candidates(d: &Design, top: usize) -> Vec<&Member> {
-    let orders = |m: &Member| (m.deterministic_order, m.invariant_measure_order);
-    let Some(best) = d.solutions.iter().chain(&d.notable).map(orders).max() else {
+    let Some(best) = d
+        .solutions
+        .iter()
+        .chain(&d.notable)
+        .map(Member::orders)
+        .max()
+    else {
         return Vec::new();
     };
     let mut members: Vec<&Member> = d
         .solutions
         .iter()
         .chain(&d.notable)
-        .filter(|m| orders(m) == best)
+        .filter(|m| m.orders() == best)
         .collect();
-    members.sort_by(|a, b| norm(a, d.objective).total_cmp(&norm(b, d.objective)));
+    members.sort_by(|a, b| a.norm(d.objective).total_cmp(&b.norm(d.objective)));
     let mut seen = std::collections::HashSet::new();
     members.retain(|m| seen.insert(m.program.clone()));
     members.truncate(top);
@@ -185,11 +180,8 @@ fn measure(d: &Design, args: &Args) -> ExitCode {
     let reference_norm = dpd::schemes::lookup(REFERENCE)
         .ok()
         .and_then(|e| e.scheme().program().map(|p| p.analysis()))
-        .and_then(|a| match d.objective {
-            Objective::Deterministic => a.deterministic_error_norm,
-            Objective::InvariantMeasure => a.invariant_measure_error_norm,
-        });
-    let mut norms: Vec<Option<f64>> = chosen.iter().map(|m| Some(norm(m, d.objective))).collect();
+        .and_then(|a| d.objective.norm_of(&a));
+    let mut norms: Vec<Option<f64>> = chosen.iter().map(|m| Some(m.norm(d.objective))).collect();
     norms.push(reference_norm);
     let predicted = ranks_descending(&norms.iter().map(|n| n.map(|x| -x)).collect::<Vec<_>>());
     let efficiency: Vec<Option<f64>> = schemes

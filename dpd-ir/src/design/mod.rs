@@ -95,19 +95,32 @@ pub fn member(family: &Family, x: &[f64], freedom: usize) -> Option<Member> {
     })
 }
 
-/// The norm of `objective` of a member; a missing norm (order above the highest checked)
-/// counts as zero.
-fn objective_norm(m: &Member, objective: Objective) -> f64 {
-    match objective {
-        Objective::Deterministic => m.deterministic_error_norm,
-        Objective::InvariantMeasure => m.invariant_measure_error_norm,
+impl Objective {
+    /// The norm this objective minimises, of an analysis (`None`: order above the highest
+    /// checked, or no invariant-measure analysis).
+    pub fn norm_of(self, a: &Analysis) -> Option<f64> {
+        match self {
+            Objective::Deterministic => a.deterministic_error_norm,
+            Objective::InvariantMeasure => a.invariant_measure_error_norm,
+        }
     }
-    .unwrap_or(0.0)
 }
 
-/// A member's (deterministic, invariant-measure) orders.
-fn orders(m: &Member) -> (u32, Option<u32>) {
-    (m.deterministic_order, m.invariant_measure_order)
+impl Member {
+    /// The norm of `objective`; a missing norm (order above the highest checked) counts as
+    /// zero.
+    pub fn norm(&self, objective: Objective) -> f64 {
+        match objective {
+            Objective::Deterministic => self.deterministic_error_norm,
+            Objective::InvariantMeasure => self.invariant_measure_error_norm,
+        }
+        .unwrap_or(0.0)
+    }
+
+    /// The (deterministic, invariant-measure) orders.
+    pub fn orders(&self) -> (u32, Option<u32>) {
+        (self.deterministic_order, self.invariant_measure_order)
+    }
 }
 
 /// Designs `family`; `extra` are further points to report (each one value per parameter).
@@ -148,7 +161,7 @@ pub fn design(family: &Family, extra: &[Vec<f64>]) -> Option<Design> {
             // to within the solver's tolerance, e.g. next to a boundary where a stage vanishes.
             let mut points = solve_all(&f, &starts, &bounds);
             points.retain(|x| {
-                member(family, &rationalise(&f, x), 0).is_some_and(|m| orders(&m) >= (det, inv))
+                member(family, &rationalise(&f, x), 0).is_some_and(|m| m.orders() >= (det, inv))
             });
             if points.is_empty() {
                 break;
@@ -166,11 +179,10 @@ pub fn design(family: &Family, extra: &[Vec<f64>]) -> Option<Design> {
             let best = minimise(family, &f, &members, &bounds, objective)?;
             let x: Vec<f64> = best.parameters.iter().map(|(_, v)| *v).collect();
             members = vec![member(family, &rationalise(&f, &x), best.freedom)
-                .filter(|m| orders(m) >= orders(&best))
+                .filter(|m| m.orders() >= best.orders())
                 .unwrap_or(best)];
         }
-        members
-            .sort_by(|a, b| objective_norm(a, objective).total_cmp(&objective_norm(b, objective)));
+        members.sort_by(|a, b| a.norm(objective).total_cmp(&b.norm(objective)));
         // a higher invariant-measure order at the same deterministic order beats the lower
         solutions.retain(|s| s.deterministic_order > det);
         solutions.extend(members);
@@ -263,7 +275,7 @@ fn minimise(
     bounds: &[(f64, f64)],
     objective: Objective,
 ) -> Option<Member> {
-    let value = |m: &Member| objective_norm(m, objective);
+    let value = |m: &Member| m.norm(objective);
     let mut best = members
         .iter()
         .min_by(|a, b| value(a).total_cmp(&value(b)))?
@@ -287,7 +299,7 @@ fn minimise(
                     continue;
                 };
                 // a point where rounding hides the orders solved for is not a better member
-                if orders(&m) == orders(&best) && value(&m) < value(&best) {
+                if m.orders() == best.orders() && value(&m) < value(&best) {
                     best = m;
                     improved = true;
                 }
