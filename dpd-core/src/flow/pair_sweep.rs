@@ -303,6 +303,7 @@ pub fn ou(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
     if gamma == 0.0 {
         return;
     }
+    let mark = sys.heat_mark();
     sweep(
         sys,
         stream,
@@ -313,6 +314,7 @@ pub fn ou(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
             unsafe { ou_changes((gamma, kbt, h), with, pairs, z, out) }
         },
     );
+    sys.record_heat(mark);
 }
 
 /// O with BBK (Shardlow's update), using the same normal `R` twice:
@@ -337,7 +339,9 @@ pub fn bbk(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
             r,
         )
     };
+    let mark = sys.heat_mark();
     sweep(sys, stream, order, pair_by_pair(change));
+    sys.record_heat(mark);
 }
 
 /// The BBK update of one pair (see [`bbk`]) with `root_h = sqrt(max(h, 0))`, random weight

@@ -5,6 +5,7 @@
 //! it never changes the trajectory.
 
 mod average;
+mod energy;
 mod profile;
 mod rdf;
 mod stress;
@@ -12,6 +13,7 @@ mod thermo;
 mod vacf;
 
 pub use average::{block_mean, Running, ThermoAverages, ThermoSummary};
+pub use energy::{balance_defined, hamiltonian, potential_energy, Balance, EnergyBalance};
 pub use profile::{fit_line, write_profile_csv, Profile, ProfileRow};
 pub use rdf::Rdf;
 pub use stress::{

@@ -29,12 +29,7 @@ impl Thermo {
 /// particles only (frozen ones have zero velocity as far as this sum goes).
 pub fn kinetic_temperature(sys: &System) -> f64 {
     let twice_ke: f64 = match sys.shear {
-        None => sys
-            .p
-            .iter()
-            .zip(&sys.inv_mass)
-            .map(|(p, im)| p.norm_squared() * im)
-            .sum(),
+        None => 2.0 * sys.kinetic_energy(),
         Some(_) => sys
             .peculiar_velocities()
             .iter()

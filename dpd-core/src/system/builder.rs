@@ -235,6 +235,7 @@ impl SystemBuilder {
             full_at: Stamp::default(),
             full_virial: None,
             impulses: None,
+            heat: None,
             counters: Counters::default(),
             drift_bound: 0.0,
             backup: Default::default(),

@@ -21,6 +21,7 @@ pub(crate) struct Backup {
     full_virial: Option<Tensor>,
     shear: Option<LeesEdwards>,
     impulses: Option<ImpulseVirial>,
+    heat: Option<f64>,
 }
 
 impl System {
@@ -57,6 +58,7 @@ impl System {
         backup.full_virial = self.full_virial;
         backup.shear = self.shear;
         backup.impulses = self.impulses;
+        backup.heat = self.heat;
         self.drift_bound = 0.0;
         step(self);
         let reason = if !self.drift_bound.is_finite() || !finite(&self.q) || !finite(&self.p) {
@@ -87,6 +89,7 @@ impl System {
                 self.full_virial = backup.full_virial;
                 self.shear = backup.shear;
                 self.impulses = backup.impulses;
+                self.heat = backup.heat;
                 Err(BlowUp {
                     step: self.step,
                     scheme: scheme.to_string(),

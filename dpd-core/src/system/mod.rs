@@ -79,6 +79,10 @@ pub struct System {
     /// Pair impulses of the dissipative and random forces being recorded for the stress
     /// (`None`: not recording, and the sweeps do not pay for it).
     pub(crate) impulses: Option<ImpulseVirial>,
+    /// Heat taken up from the thermostat since recording started: the sum of the kinetic
+    /// energy changes of the O and O-BBK sweeps (`None`: not recording, and the sweeps do not
+    /// pay for it; see [`crate::observe::EnergyBalance`]).
+    pub(crate) heat: Option<f64>,
     pub(crate) counters: Counters,
     /// Sum over this step's drifts of the largest single-particle drift length.
     pub(crate) drift_bound: f64,
@@ -161,6 +165,16 @@ impl System {
     /// Number of neighbour-list builds so far.
     pub fn list_builds(&self) -> u64 {
         self.list.builds()
+    }
+
+    /// Kinetic energy `sum_i p_i . p_i / (2 m_i)` (frozen particles count 0).
+    pub fn kinetic_energy(&self) -> f64 {
+        0.5 * self
+            .p
+            .iter()
+            .zip(&self.inv_mass)
+            .map(|(p, im)| p.norm_squared() * im)
+            .sum::<f64>()
     }
 
     /// Total momentum.

@@ -110,6 +110,19 @@ impl System {
         }
     }
 
+    /// The kinetic energy before a thermostat sweep, when heat is being recorded (`None`
+    /// otherwise: the sweep then pays one branch).
+    pub(crate) fn heat_mark(&self) -> Option<f64> {
+        self.heat.map(|_| self.kinetic_energy())
+    }
+
+    /// Add the kinetic energy gained since `mark` ([`System::heat_mark`]) to the heat.
+    pub(crate) fn record_heat(&mut self, mark: Option<f64>) {
+        if let (Some(heat), Some(before)) = (self.heat, mark) {
+            self.heat = Some(heat + self.kinetic_energy() - before);
+        }
+    }
+
     /// Record an F kick of step `h` with the full forces in the cache (nothing when not
     /// recording).
     pub(crate) fn record_full_kick(&mut self, h: f64) {
