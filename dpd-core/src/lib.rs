@@ -24,6 +24,7 @@ pub mod flow;
 pub mod force;
 pub mod init;
 mod lanes;
+pub mod metropolis;
 pub mod neighbour;
 pub mod observe;
 pub mod pairs;
