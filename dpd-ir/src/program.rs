@@ -193,12 +193,51 @@ impl Program {
             .iter()
             .zip(self.stages.iter().rev())
             .take(n / 2)
-            .all(|(a, b)| {
-                a.flow == b.flow
-                    && coeffs_equal(&a.coeff, &b.coeff)
-                    && (!a.flow.is_successive_sweep() || a.order != b.order)
-            })
+            .all(|(a, b)| mirrored(a, b))
     }
+
+    /// Whether the step, repeated, reads the same backwards: the cycle of merged stages (the
+    /// last and first joined where they merge, as `A(2/3)` and `A(1/3)` across the step
+    /// boundary) has a mirror axis, through a stage or between two stages. Its time reversal
+    /// is then the same chain observed at another phase of the step: `OBAB` is `OBABO` with
+    /// its two half sweeps joined. Mirrored stages as in [`Program::is_symmetric`].
+    pub fn is_cyclically_symmetric(&self) -> bool {
+        let mut cycle = self.stages.clone();
+        if let [first, .., last] = &cycle[..] {
+            if first.flow == last.flow && !first.flow.is_successive_sweep() {
+                let joined = Coeff {
+                    value: first.coeff.value + last.coeff.value,
+                    exact: first
+                        .coeff
+                        .exact
+                        .as_ref()
+                        .zip(last.coeff.exact.as_ref())
+                        .map(|(a, b)| a + b),
+                };
+                cycle.pop();
+                cycle[0].coeff = joined;
+            }
+        }
+        let n = cycle.len();
+        let at = |k: usize| &cycle[k % n];
+        // Axis through stage k (offset 0) or between stages k and k + 1 (offset 1): stage
+        // k + i mirrors stage k - i + offset.
+        (0..n).any(|k| {
+            [0, 1]
+                .iter()
+                .any(|&offset| (1..=n).all(|i| mirrored(at(k + i), at(k + 2 * n + offset - i))))
+        })
+    }
+}
+
+/// Whether stages `a` and `b` are mirror images in a step read backwards: same flow and
+/// coefficient, and successive sweeps in opposite orders (the adjoint of a sweep is the
+/// reversed sweep). A stage mirrored onto itself always is.
+fn mirrored(a: &Stage, b: &Stage) -> bool {
+    std::ptr::eq(a, b)
+        || (a.flow == b.flow
+            && coeffs_equal(&a.coeff, &b.coeff)
+            && (!a.flow.is_successive_sweep() || a.order != b.order))
 }
 
 fn coeffs_equal(a: &Coeff, b: &Coeff) -> bool {

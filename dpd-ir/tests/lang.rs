@@ -552,3 +552,30 @@ mod free_parameters {
         assert_eq!(family_err("param l in 0 1; A(l) B O", "'..'"), "1");
     }
 }
+
+#[test]
+fn cyclic_symmetry() {
+    // Symmetric steps, and steps whose repetition is symmetric: OBAB is OBABO with its half
+    // sweeps joined, B A B O the same, S(x1)S(x0)S(x1) O has its axis through the sweep.
+    for src in [
+        "ABOBA",
+        "BAOOAB",
+        "OBAB",
+        "BABO",
+        "Ob B A B",
+        "S(x1)S(x0)S(x1) O",
+        "A(1/3) B O B A(2/3)",
+    ] {
+        assert!(ok(src).is_cyclically_symmetric(), "{src}");
+    }
+    // ABO backwards is OBA, which no rotation of ABO is; mirrored sweeps in the same order
+    // are not each other's adjoint.
+    for src in [
+        "ABO",
+        "A B(1/3) O B(2/3)",
+        "BAO>O>AB",
+        "A(1/3) B(1/4) O B(3/4) A(2/3)",
+    ] {
+        assert!(!ok(src).is_cyclically_symmetric(), "{src}");
+    }
+}
