@@ -32,6 +32,11 @@ pub struct Aggregate {
     /// [`Viscosity::combine`]).
     #[serde(flatten, skip_serializing_if = "Option::is_none")]
     pub viscosity: Option<Viscosity>,
+    /// Mean heat and shadow work per particle and time unit in k_B T, where measured.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub heat: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shadow_work: Option<f64>,
     /// (T_K - k_B T) / k_B T.
     pub kinetic_temperature_error: Option<f64>,
     /// (T_C - k_B T) / k_B T.
@@ -85,6 +90,8 @@ impl Aggregate {
             force_evaluations_per_step: mean(runs.iter().map(|r| r.force_evaluations_per_step)),
             diffusion: over(|r| r.diffusion),
             viscosity: Viscosity::combine(&runs.iter().map(|r| r.viscosity).collect::<Vec<_>>()),
+            heat: over(|r| r.heat),
+            shadow_work: over(|r| r.shadow_work),
             kinetic_temperature_error: relative(kinetic_temperature, Some(kbt)),
             configurational_temperature_error: relative(configurational_temperature, Some(kbt)),
             potential_energy_error: None,

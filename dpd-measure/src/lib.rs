@@ -8,6 +8,7 @@ pub mod aggregate;
 pub mod critical;
 pub mod flows;
 pub mod images;
+pub mod kl;
 pub mod paper;
 pub mod plot;
 pub mod report;

@@ -4,7 +4,9 @@
 use super::flows::{FlowObservers, Viscosity};
 use super::scene::Scene;
 use super::trajectory::Recorder;
-use dpd_core::observe::{thermo, ProfileRow, Rdf, ThermoAverages, Vacf};
+use dpd_core::observe::{
+    balance_defined, thermo, EnergyBalance, ProfileRow, Rdf, ThermoAverages, Vacf,
+};
 use dpd_core::{ParamError, Scheme};
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
@@ -76,6 +78,14 @@ pub struct RunResult {
     /// Slab profile with `[profile]` in the scene.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub profile: Option<Vec<ProfileRow>>,
+    /// With `energy_balance`: heat taken up from the thermostat per particle and time unit, in
+    /// k_B T, from the first sample of the averaging window to the end.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub heat: Option<f64>,
+    /// With `energy_balance`: shadow work per particle and time unit, in k_B T, over the same
+    /// window (in the steady state about minus the heat).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shadow_work: Option<f64>,
 }
 
 impl RunResult {
@@ -126,6 +136,11 @@ pub fn run(
         Some(t) => Some(Recorder::start(t, dt, seed, scene.runs, &mut sys)?),
         None => None,
     };
+    if scene.energy_balance {
+        balance_defined(&sys, scheme)?;
+    }
+    // Started at the first sample of the averaging window: (balance, its step).
+    let mut balance: Option<(EnergyBalance, u64)> = None;
     let (mut elapsed, mut forces, mut geometry) = (Duration::ZERO, 0, 0);
     let (mut error, mut interrupted) = (None, false);
     while sys.step() < steps {
@@ -160,13 +175,21 @@ pub fn run(
             rdf.iter_mut().for_each(|r| r.record(&sys));
             vacf.iter_mut().for_each(|v| v.record(&sys));
             flows.record(&mut sys);
+            if scene.energy_balance && balance.is_none() {
+                balance = Some((EnergyBalance::start(&mut sys, scheme)?, sys.step()));
+            }
         }
     }
+    let energies = balance.map(|(b, from)| (b.finish(&mut sys), sys.step() - from));
     let (viscosity, profile) = flows.finish(&mut sys);
     let done = sys.step();
     let per_step = |x: f64| (done > 0).then(|| x / done as f64);
     let s = thermo_avg.summary();
     let stable = error.is_none();
+    let per_particle_time = |energy: f64, steps: u64| {
+        let scale = sys.len() as f64 * steps as f64 * dt * scene.kbt;
+        (stable && steps > 0 && energy.is_finite()).then(|| energy / scale)
+    };
     let observed = |x: f64| (stable && s.samples > 0 && x.is_finite()).then_some(x);
     // Between walls the sums include frozen particles and the wall forces: T_C and the
     // periodic virial pressure do not mean what they mean in the bulk.
@@ -197,11 +220,13 @@ pub fn run(
             .filter(|d| d.is_finite()),
         viscosity: viscosity.map(|v| if stable { v } else { Viscosity::default() }),
         profile: profile.filter(|_| stable),
+        heat: energies.and_then(|(b, steps)| per_particle_time(b.heat, steps)),
+        shadow_work: energies.and_then(|(b, steps)| per_particle_time(b.shadow_work, steps)),
     })
 }
 
 /// A pool of `threads` rayon threads (0: one per core) for the core's pair loops.
-fn pool(threads: usize) -> Result<rayon::ThreadPool, ParamError> {
+pub(crate) fn pool(threads: usize) -> Result<rayon::ThreadPool, ParamError> {
     rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()

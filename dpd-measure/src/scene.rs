@@ -75,6 +75,10 @@ pub struct Scene {
     pub trajectory: Option<TrajectorySpec>,
     /// Start from a frame of a GSD file, `"FILE.gsd"` (its last frame) or `"FILE.gsd:K"`.
     pub init: Option<String>,
+    /// Measure the heat and the shadow work over the averaging window (schemes made of A, B,
+    /// O and Ob, at equilibrium; see `dpd_core::observe::EnergyBalance`).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub energy_balance: bool,
 }
 
 /// Radial distribution function accumulated over the averaging window.
@@ -166,6 +170,7 @@ impl Default for Scene {
             profile: None,
             trajectory: None,
             init: None,
+            energy_balance: false,
         }
     }
 }
@@ -264,6 +269,10 @@ pub struct Overrides {
     /// Lees-Edwards shear rate kappa (measures the shear viscosity)
     #[arg(long, value_name = "KAPPA", allow_hyphen_values = true)]
     pub shear_rate: Option<f64>,
+    /// Measure heat and shadow work over the averaging window (schemes of A, B, O, Ob)
+    #[arg(long)]
+    #[serde(default)]
+    pub energy_balance: bool,
 }
 
 /// Command-line overrides of the `[sweep]` table's keys; each flag replaces the key of the same
@@ -337,6 +346,7 @@ impl Scene {
         if let Some(k) = o.shear_rate {
             s.shear_rate = Some(k);
         }
+        s.energy_balance |= o.energy_balance;
         s.validate()?;
         Ok(s)
     }

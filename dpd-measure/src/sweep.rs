@@ -451,6 +451,8 @@ mod tests {
             diffusion: None,
             viscosity: None,
             profile: None,
+            heat: None,
+            shadow_work: None,
         }
     }
 

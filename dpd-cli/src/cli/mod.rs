@@ -3,6 +3,7 @@
 mod check;
 mod design;
 mod export;
+mod kl;
 mod orderings;
 mod progress;
 mod reproduce;
@@ -35,6 +36,8 @@ enum Command {
     Check(check::Args),
     /// Solve a family's order conditions, then minimise its error norm
     Design(design::Args),
+    /// Estimate the KL divergence of a scheme's configurations from shadow work
+    Kl(kl::Args),
     /// Enumerate the distinct consistent splitting strings up to a length
     Orderings(orderings::Args),
     /// List the named schemes with their cost and analysed orders
@@ -56,6 +59,7 @@ pub fn main(cli: Cli) -> ExitCode {
         Some(Command::Check(args)) => check::main(args),
         Some(Command::Orderings(args)) => orderings::main(args),
         Some(Command::Design(args)) => design::main(args),
+        Some(Command::Kl(args)) => kl::main(args),
         Some(Command::Schemes(args)) => schemes::main(args),
         Some(Command::Stability(args)) => stability::main(args),
         Some(Command::Reproduce(args)) => reproduce::main(args),

@@ -172,6 +172,9 @@ fn print_table(r: &RunReport) {
     if let Some(d) = c.diffusion {
         println!("diffusion coefficient: {d:.5}");
     }
+    if let (Some(q), Some(w)) = (c.heat, c.shadow_work) {
+        println!("per particle and time unit, in k_B T: heat {q:.4e}, shadow work {w:.4e}");
+    }
     if let Some(v) = c.viscosity {
         match v.shear_viscosity.zip(v.shear_viscosity_error) {
             Some((eta, e)) => println!("shear viscosity: {eta:.4} +- {e:.4}"),

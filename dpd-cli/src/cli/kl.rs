@@ -1,0 +1,118 @@
+//! `dpd kl`: the KL divergence between the configurations a scheme samples and exp(-U/k_B T),
+//! estimated from shadow work ([`dpd_measure::kl`]).
+
+use super::{bad_input, print_json, progress, INTERRUPTED};
+use dpd::error::shown;
+use dpd::schemes::registry::resolve;
+use dpd_measure::kl::{estimate, KlError, KlSpec};
+use dpd_measure::runner::Control;
+use dpd_measure::{Overrides, Scene};
+use std::process::ExitCode;
+
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Registry name or scheme string made of A, B, O and Ob (e.g. "ABOBA")
+    #[arg(id = "kl-scheme", value_name = "SCHEME")]
+    scheme: String,
+    #[command(flatten)]
+    scene: Overrides,
+    /// Protocol samples (each: an equilibrium state and two halves of the protocol)
+    #[arg(long, default_value_t = KlSpec::default().samples)]
+    samples: u64,
+    /// Length of each half of the protocol, in time units
+    #[arg(long, value_name = "T", default_value_t = KlSpec::default().protocol_time)]
+    protocol_time: f64,
+    /// Monte Carlo sweeps between two equilibrium samples of a chain
+    #[arg(long, default_value_t = KlSpec::default().sweeps_between)]
+    sweeps_between: u64,
+    /// Print one JSON object on stdout
+    #[arg(long)]
+    json: bool,
+}
+
+pub fn main(args: Args) -> ExitCode {
+    if let Some(s) = &args.scene.scheme {
+        return bad_input(format!(
+            "--scheme {s}: give the scheme as the first argument of `dpd kl`"
+        ));
+    }
+    let scene = match Scene::resolve(&args.scene) {
+        Ok(scene) => scene,
+        Err(e) => return bad_input(e),
+    };
+    let scheme = match resolve(&args.scheme) {
+        Ok(scheme) => scheme,
+        Err(e) => return bad_input(format!("invalid scheme: {e}")),
+    };
+    let spec = KlSpec {
+        samples: args.samples,
+        protocol_time: args.protocol_time,
+        sweeps_between: args.sweeps_between,
+        ..KlSpec::default()
+    };
+    let name = shown(&args.scheme);
+    let steps = ((spec.protocol_time / scene.dt).round() as u64).max(1);
+    match scheme.program() {
+        Some(p) => eprintln!("# dpd: KL estimate of {name} = {p}"),
+        None => eprintln!("# dpd: KL estimate of {name}"),
+    }
+    eprintln!(
+        "# dt = {}, {} samples of 2 x {steps} steps, {} Monte Carlo sweeps between samples\n\
+         # N = {}, density = {}, a = {}, gamma = {}, kbt = {}, mass = {}, weight_exponent = {}, \
+         seed = {}",
+        scene.dt,
+        spec.samples,
+        spec.sweeps_between,
+        scene.particles(),
+        scene.density,
+        scene.a,
+        scene.gamma,
+        scene.kbt,
+        scene.mass,
+        scene.weight_exponent,
+        scene.seed
+    );
+    let bar = progress::bar(
+        2 * steps * spec.samples,
+        format!("{name} dt = {}", scene.dt),
+    );
+    let control = Control {
+        stop: progress::stop_flag(),
+        progress: &|n| bar.inc(n),
+    };
+    let result = estimate(&scene, scheme.as_ref(), scene.dt, &spec, control);
+    bar.finish_and_clear();
+    let r = match result {
+        Ok(r) => r,
+        Err(KlError::Interrupted) => {
+            eprintln!("dpd: interrupted, no estimate");
+            return ExitCode::from(INTERRUPTED);
+        }
+        Err(KlError::BlowUp(b)) => {
+            eprintln!("dpd: the scheme blew up in a protocol, so it has no stationary distribution at dt = {}: {b}", scene.dt);
+            return ExitCode::FAILURE;
+        }
+        Err(e) => return bad_input(e),
+    };
+    if args.json {
+        return print_json(&r);
+    }
+    println!(
+        "KL divergence of the configurations: {:.4e} +- {:.1e} ({:.3e} per particle, N = {})",
+        r.kl_divergence, r.kl_error, r.kl_per_particle, r.particles
+    );
+    println!(
+        "shadow work in k_B T: <W_F> = {:.4e} +- {:.1e}, <W_R> = {:.4e} +- {:.1e}",
+        r.forward_work.mean, r.forward_work.error, r.reverse_work.mean, r.reverse_work.error
+    );
+    println!(
+        "equilibrium samples: U / N = {:.5} +- {:.1e}",
+        r.equilibrium_potential_energy.mean, r.equilibrium_potential_energy.error
+    );
+    println!(
+        "{} samples x 2 x {} steps; Monte Carlo acceptance {:.2}; seconds (all threads): \
+         Monte Carlo {:.1}, protocols {:.1}",
+        r.samples, r.protocol_steps, r.acceptance, r.sampling_seconds, r.protocol_seconds
+    );
+    ExitCode::SUCCESS
+}
