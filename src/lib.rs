@@ -13,9 +13,9 @@
 //! is `examples/quick_start.rs`, shown in README.md and run by `tests/readme.rs`.
 
 pub use dpd_core::{
-    boundary, checkpoint, error, flow, init, neighbour, observe, pairs, params, reference, rng,
-    scheme, system, BlowUp, CheckpointError, DynScheme, Flow, ParamError, Params, PeriodicBox,
-    Scheme, Stage, SweepOrder, System, SystemBuilder, Vec3,
+    boundary, checkpoint, error, flow, init, metropolis, neighbour, observe, pairs, params,
+    reference, rng, scheme, system, BlowUp, CheckpointError, DynScheme, Flow, ParamError, Params,
+    PeriodicBox, Scheme, Stage, SweepOrder, System, SystemBuilder, Vec3,
 };
 pub use dpd_ir::{analysis, design, lang, program, Analysis, Program};
 #[doc = include_str!("dpd_scheme.md")]

@@ -47,13 +47,14 @@ pub struct KlSpec {
 }
 
 impl Default for KlSpec {
-    /// Measured on the standard box (docs/design.md, "The KL estimator"): 2 time units per half
-    /// reach the plateau, 10 sweeps between samples leave no visible correlation.
+    /// As measured on the standard box (docs/design.md, "The KL estimator"): 2 time units per
+    /// half reach the plateau; 2 sweeps between samples, whose correlation the block error
+    /// bars cover.
     fn default() -> Self {
         KlSpec {
             samples: 200,
             protocol_time: 2.0,
-            sweeps_between: 10,
+            sweeps_between: 2,
             equilibration_sweeps: 200,
         }
     }
