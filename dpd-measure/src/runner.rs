@@ -59,7 +59,8 @@ pub struct RunResult {
     pub pressure: Option<f64>,
     /// Wall-clock milliseconds per step of the integration alone (no sampling). In a sheared
     /// scene this includes the recording of pair impulses for the stress, which the sweeps do
-    /// during the averaging window (a tensor update per pair).
+    /// during the averaging window (a tensor update per pair); with `energy_balance`, the two
+    /// kinetic-energy sums per sweep of the heat recording.
     pub ms_per_step: Option<f64>,
     /// Force evaluations per step, counted during the integration.
     pub force_evaluations_per_step: Option<f64>,
