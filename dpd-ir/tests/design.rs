@@ -60,3 +60,17 @@ fn solutions_next_to_a_fraction_are_reported_at_it() {
         .iter()
         .all(|m| m.invariant_measure_order == Some(1)));
 }
+
+/// Splitting the sweep of ABOBA between the two ends of the step: the norm falls towards
+/// c = 0, where O(c) cannot be built. The optimum is reported as that limit, not as a member at
+/// c ~ 1e-9; a minimum inside the range (the BAB family above) has no limit.
+#[test]
+fn an_infimum_at_an_unbuildable_end_is_named_as_a_limit() {
+    let f = compile_family("param c in 0..1; A(1/2) B(1/2) O(c) B(1/2) A(1/2) O(1 - c)").unwrap();
+    let d = design(&f, &[]).unwrap();
+    let best = &d.solutions[0];
+    assert_eq!(best.limit.as_deref(), Some("c -> 0"), "{d:#?}");
+    assert!(best.parameters[0].1 < 1e-6);
+    let f = compile_family("param l in 0..1/2; B(l) A(1/2) B(1 - 2*l) A(1/2) B(l) O").unwrap();
+    assert_eq!(design(&f, &[]).unwrap().solutions[0].limit, None);
+}

@@ -116,6 +116,9 @@ fn print_members(members: &[Member]) {
             m.force_evaluations_per_step,
             m.pair_distance_evaluations_per_step
         );
+        if let Some(limit) = &m.limit {
+            println!("    (the infimum as {limit}, where the scheme cannot be built; this point is next to it)");
+        }
     }
 }
 

@@ -53,6 +53,11 @@ pub struct Member {
     pub pair_distance_evaluations_per_step: usize,
     /// Dimension of the solution set through this point (0: an isolated solution).
     pub freedom: usize,
+    /// Set when the norm keeps decreasing towards an end of a range where the scheme cannot be
+    /// built (a sweep would get a zero step): the member is then only a point next to the
+    /// infimum, which this names, e.g. `c -> 0`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub limit: Option<String>,
 }
 
 /// The result of [`design`].
@@ -92,6 +97,7 @@ pub fn member(family: &Family, x: &[f64], freedom: usize) -> Option<Member> {
         force_evaluations_per_step: cost.force,
         pair_distance_evaluations_per_step: cost.pair_distance,
         freedom,
+        limit: None,
     })
 }
 
@@ -178,9 +184,11 @@ pub fn design(family: &Family, extra: &[Vec<f64>]) -> Option<Design> {
         if members.iter().any(|m| m.freedom > 0) {
             let best = minimise(family, &f, &members, &bounds, objective)?;
             let x: Vec<f64> = best.parameters.iter().map(|(_, v)| *v).collect();
-            members = vec![member(family, &rationalise(&f, &x), best.freedom)
+            let mut optimum = member(family, &rationalise(&f, &x), best.freedom)
                 .filter(|m| m.orders() >= best.orders())
-                .unwrap_or(best)];
+                .unwrap_or(best);
+            optimum.limit = unbuildable_limit(family, &x, &bounds);
+            members = vec![optimum];
         }
         members.sort_by(|a, b| a.norm(objective).total_cmp(&b.norm(objective)));
         // a higher invariant-measure order at the same deterministic order beats the lower
@@ -212,6 +220,22 @@ pub fn design(family: &Family, extra: &[Vec<f64>]) -> Option<Design> {
         generic_orders: (generic.deterministic_order, generic.invariant_measure_order),
         solutions,
         notable,
+    })
+}
+
+/// `name -> end` for the first parameter of `x` that lies within the minimiser's resolution
+/// of an end of its range where the family cannot be built.
+fn unbuildable_limit(family: &Family, x: &[f64], bounds: &[(f64, f64)]) -> Option<String> {
+    let names = family.names();
+    bounds.iter().enumerate().find_map(|(k, &(lo, hi))| {
+        let end = [lo, hi]
+            .into_iter()
+            .find(|end| (x[k] - end).abs() <= 1e-6 * (hi - lo))?;
+        let mut at = x.to_vec();
+        at[k] = end;
+        member(family, &at, 0)
+            .is_none()
+            .then(|| format!("{} -> {end}", names[k]))
     })
 }
 
