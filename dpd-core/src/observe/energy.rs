@@ -36,7 +36,8 @@ pub struct EnergyBalance {
 }
 
 impl EnergyBalance {
-    /// Start recording on `sys`, stepped by `scheme`, from its current state (heat 0).
+    /// Start recording on `sys`, stepped by `scheme`, from its current state (heat 0). The
+    /// system holds one recording: starting another restarts it.
     ///
     /// Errors name the stage or the scene setting for which heat and work are not defined.
     pub fn start(sys: &mut System, scheme: &dyn Scheme) -> Result<Self, ParamError> {
