@@ -33,6 +33,10 @@ use thiserror::Error;
 /// Blocks of consecutive samples behind the error bar.
 pub const KL_BLOCKS: usize = 10;
 
+/// Longest half of a protocol, in steps: Ctrl-C is honoured between samples, so a half must
+/// end in minutes.
+pub const MAX_PROTOCOL_STEPS: u64 = 1_000_000;
+
 /// How much sampling one estimate takes.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct KlSpec {
@@ -84,7 +88,18 @@ impl KlSpec {
                 "must be at least 1 (consecutive samples must differ)",
             ));
         }
-        Ok(((self.protocol_time / dt).round() as u64).max(1))
+        let steps = ((self.protocol_time / dt).round() as u64).max(1);
+        if steps > MAX_PROTOCOL_STEPS {
+            return Err(ParamError::new(
+                "protocol_time",
+                self.protocol_time,
+                format!(
+                    "gives {steps} steps per half at dt = {dt}; at most {MAX_PROTOCOL_STEPS} \
+                     (a few time units reach the plateau)"
+                ),
+            ));
+        }
+        Ok(steps)
     }
 }
 
@@ -371,6 +386,11 @@ mod tests {
         assert!(refused(&s, "setd", 20).allowed.contains("hand-written"));
         assert!(refused(&s, "A B O", 20).allowed.contains("not symmetric"));
         assert_eq!(refused(&s, "aboba", 19).field, "samples");
+        let long = KlSpec {
+            protocol_time: 1e9,
+            ..KlSpec::default()
+        };
+        assert_eq!(long.validate(0.05).unwrap_err().field, "protocol_time");
         let sheared = Scene {
             shear_rate: Some(0.5),
             ..scene()
