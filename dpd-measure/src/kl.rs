@@ -216,7 +216,11 @@ pub fn estimate(
             .collect();
         handles
             .into_iter()
-            .map(|h| h.join().unwrap_or_default())
+            // A chain that panicked is a defect: re-raise it rather than drop its samples.
+            .map(|h| {
+                h.join()
+                    .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
+            })
             .collect()
     });
     if let Some(e) = failure.into_inner().unwrap_or_else(|e| e.into_inner()) {
