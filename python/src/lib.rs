@@ -1,16 +1,18 @@
-//! The Python module `dpd`: the order analysis, the registry, a steppable simulation and the
-//! dt sweep, as thin wrappers over the crates the `dpd` program uses. Results are the same
+//! The Python module `dpd`: the order analysis, the registry, a steppable simulation, the
+//! dt sweep and the KL estimate, as thin wrappers over the crates the `dpd` program uses. Results are the same
 //! JSON values the program prints, converted to Python objects; invalid input raises
 //! `ValueError` with the program's message.
 
 mod simulation;
 mod wait;
 
+use dpd_measure::kl::{estimate, KlError, KlSpec};
 use dpd_measure::sweep::{load_finished, run_sweep, Hooks};
 use dpd_measure::{
     Control, Observable, Overrides, Scene, SchemeList, SweepOverrides, SweepResults,
 };
-use dpd_schemes::check::check as check_scheme;
+use dpd_schemes::check::{check as check_scheme, CheckError};
+use dpd_schemes::registry::resolve;
 use dpd_schemes::registry::{entries, Row};
 use pyo3::exceptions::{PyRuntimeError, PyRuntimeWarning, PyValueError};
 use pyo3::prelude::*;
@@ -148,6 +150,53 @@ fn sweep(
     to_python(py, &results)
 }
 
+/// kl(scheme, *, samples=200, protocol_time=2.0, sweeps_between=2, **scene)
+/// --
+///
+/// The KL divergence between the configurations `scheme` samples at the scene's dt and
+/// exp(-U / k_B T), estimated from shadow work as `dpd kl` does: the dict of
+/// `dpd kl --json` (kl_divergence, kl_error, protocol_steps, samples, ...). Raises
+/// ValueError for a scheme or scene the estimate does not apply to, BlowUpError when a
+/// protocol blows up. The GIL is released meanwhile; Ctrl-C raises KeyboardInterrupt.
+#[pyfunction]
+#[pyo3(signature = (scheme, *, samples=None, protocol_time=None, sweeps_between=None, **scene))]
+fn kl(
+    py: Python<'_>,
+    scheme: &str,
+    samples: Option<u64>,
+    protocol_time: Option<f64>,
+    sweeps_between: Option<u64>,
+    scene: Option<&Bound<'_, PyDict>>,
+) -> PyResult<PyObject> {
+    let scene = scene_of(scene)?;
+    let defaults = KlSpec::default();
+    let spec = KlSpec {
+        samples: samples.unwrap_or(defaults.samples),
+        protocol_time: protocol_time.unwrap_or(defaults.protocol_time),
+        sweeps_between: sweeps_between.unwrap_or(defaults.sweeps_between),
+        ..defaults
+    };
+    let scheme = resolve(scheme).map_err(|reason| {
+        invalid(CheckError {
+            scheme: scheme.to_string(),
+            reason,
+        })
+    })?;
+    let stop = AtomicBool::new(false);
+    let control = Control {
+        stop: &stop,
+        progress: &|_| {},
+    };
+    let result = wait::interruptible(py, &stop, || {
+        estimate(&scene, scheme.as_ref(), scene.dt, &spec, control)
+    })?;
+    match result {
+        Ok(r) => to_python(py, &r),
+        Err(KlError::BlowUp(b)) => Err(BlowUpError::new_err(b.to_string())),
+        Err(e) => Err(invalid(e)),
+    }
+}
+
 /// Compose, check and run splitting integrators for dissipative particle dynamics.
 #[pymodule]
 #[pyo3(name = "dpd")]
@@ -155,6 +204,7 @@ fn dpd_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(check, m)?)?;
     m.add_function(wrap_pyfunction!(schemes, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(kl, m)?)?;
     m.add_class::<simulation::Simulation>()?;
     m.add("BlowUpError", m.py().get_type::<BlowUpError>())?;
     Ok(())

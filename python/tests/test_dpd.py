@@ -152,6 +152,23 @@ def test_an_invalid_sweep_is_a_value_error():
         dpd.sweep(n=100, observable="pressure")
 
 
+def test_kl_returns_the_estimate_of_dpd_kl():
+    r = dpd.kl("ABOBA", dt=0.1, n=100, samples=20, protocol_time=0.5)
+    for key in ("kl_divergence", "kl_error", "protocol_steps", "samples", "forward_work"):
+        assert key in r
+    assert r["protocol_steps"] == 5 and r["samples"] == 20
+    assert r["kl_error"] > 0
+
+
+def test_kl_refuses_what_it_does_not_apply_to():
+    with pytest.raises(ValueError, match="not symmetric"):
+        dpd.kl("A B O", n=100, samples=20)
+    with pytest.raises(ValueError, match="T stage"):
+        dpd.kl("sas", n=100, samples=20)
+    with pytest.raises(dpd.BlowUpError):
+        dpd.kl("ABOBA", dt=0.3, n=100, samples=20)
+
+
 def test_ctrl_c_stops_a_run_within_a_chunk():
     # interrupt_main raises the pending signal as Ctrl-C would; the run checks for it between
     # chunks of 50 steps, so it stops long before the 100 000 steps (about 20 s) it was given.
