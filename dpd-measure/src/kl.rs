@@ -359,7 +359,7 @@ mod tests {
     }
 
     /// At dt = 0.1 (gamma 4.5) OBAB's T_C is 51 % too high and ABOBA's 2 % too low; their KL
-    /// divergences on N = 500 were measured as 12.9 +- 0.8 and 1.0 +- 0.3 (docs/design.md).
+    /// divergences on N = 500 were measured as 12.9 +- 0.2 and 1.45 +- 0.18 (docs/design.md).
     /// Here, at N = 200 with 400 samples each, 5.6 +- 0.6 and 1.4 +- 0.6: OBAB's must exceed
     /// ABOBA's by three standard errors of the difference (it does by 4.9) and be positive by
     /// four. Equal or reversed values, as a wrong work or a missing midpoint resampling would

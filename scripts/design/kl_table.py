@@ -18,15 +18,20 @@ def load(path):
         return None
 
 
+def results(prefix):
+    """(file name, parsed JSON) of OUT_DIR/<prefix>-*.json, skipping unreadable files."""
+    for path in sorted(glob.glob(os.path.join(out, prefix + "-*.json"))):
+        d = load(path)
+        if d is not None:
+            yield os.path.basename(path), d
+
+
 print("| file | KL | W_F, W_R (k_B T) | equilibrium U/N | Monte Carlo + protocol s |")
 print("|---|---|---|---|---|")
-for path in sorted(glob.glob(os.path.join(out, "kl-*.json"))):
-    d = load(path)
-    if d is None:
-        continue
+for name, d in results("kl"):
     u = d["equilibrium_potential_energy"]
     print(
-        f"| {os.path.basename(path)} | {d['kl_divergence']:.3f} +- {d['kl_error']:.3f} "
+        f"| {name} | {d['kl_divergence']:.3f} +- {d['kl_error']:.3f} "
         f"| {d['forward_work']['mean']:.1f}, {d['reverse_work']['mean']:.1f} "
         f"| {u['mean']:.5f} +- {u['error']:.5f} "
         f"| {d['sampling_seconds']:.0f} + {d['protocol_seconds']:.0f} |"
@@ -34,12 +39,9 @@ for path in sorted(glob.glob(os.path.join(out, "kl-*.json"))):
 print()
 print("| file | T_C - 1 | T_K - 1 | U/N | ms per step |")
 print("|---|---|---|---|---|")
-for path in sorted(glob.glob(os.path.join(out, "tc-*.json"))):
-    d = load(path)
-    if d is None:
-        continue
+for name, d in results("tc"):
     print(
-        f"| {os.path.basename(path)} | {100 * d['configurational_temperature_error']:+.2f} % "
+        f"| {name} | {100 * d['configurational_temperature_error']:+.2f} % "
         f"+- {100 * d['configurational_temperature_stderr']:.2f} "
         f"| {100 * d['kinetic_temperature_error']:+.2f} % | {d['potential_energy']:.4f} "
         f"| {d['ms_per_step']:.4f} |"
