@@ -30,6 +30,8 @@ from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
+import protocol
+
 N = 500
 DENSITY = 3.0
 A = 25.0
@@ -122,21 +124,11 @@ def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--lmp", required=True, help="the lmp executable")
     p.add_argument("--scheme", choices=["vv", "shardlow"], required=True)
-    p.add_argument("--gamma", type=float, required=True)
-    p.add_argument("--dt", type=float, required=True)
-    p.add_argument("--time", type=float, default=1000.0)
-    p.add_argument("--runs", type=int, default=10)
-    p.add_argument("--average", type=float, default=0.8, help="averaged fraction of each run")
+    protocol.add_arguments(p)
     p.add_argument("--jobs", type=int, default=1, help="LAMMPS processes at a time")
     p.add_argument("--work", default="/tmp/lammps-tc")
     args = p.parse_args()
-    limits = (("--gamma", args.gamma >= 0, ">= 0"), ("--dt", args.dt > 0, "> 0"),
-              ("--time", args.time > 0, "> 0"), ("--runs", args.runs >= 2, ">= 2"),
-              ("--average", 0 < args.average <= 1, "in (0, 1]"), ("--jobs", args.jobs >= 1, ">= 1"))
-    for name, ok, valid in limits:
-        if not ok:
-            value = getattr(args, name[2:])
-            sys.exit(f"{name} = {value} is out of range: it must be {valid}")
+    protocol.check(args, [("--jobs", args.jobs >= 1, ">= 1")])
     os.makedirs(args.work, exist_ok=True)
     with ThreadPoolExecutor(max_workers=args.jobs) as pool:
         seeds = range(1000, 1000 + 100 * args.runs, 100)
@@ -147,11 +139,8 @@ def main():
                                   else f"failed: {info}"), flush=True)
         if err is not None:
             errors.append(err)
-    if len(errors) >= 2:  # a standard error needs two runs
-        e = np.array(errors)
-        print(f"{args.scheme} gamma {args.gamma:g} dt {args.dt:g}: T_C - 1 = {100 * e.mean():+.3f} "
-              f"+- {100 * e.std(ddof=1) / math.sqrt(len(e)):.3f} % over {len(e)} runs of "
-              f"{args.time:g} time units (last {100 * args.average:g} %)")
+    if len(errors) >= 2:
+        print(protocol.summary(args.scheme, args, errors))
     if len(errors) < len(results):
         sys.exit(1)
 

@@ -1,0 +1,35 @@
+"""The papers' run protocol as command-line options, and the summary line both scripts print."""
+
+import math
+import sys
+
+
+def add_arguments(parser):
+    """--gamma, --dt, --time, --runs and --average (the averaged fraction of each run)."""
+    parser.add_argument("--gamma", type=float, required=True)
+    parser.add_argument("--dt", type=float, required=True)
+    parser.add_argument("--time", type=float, default=1000.0)
+    parser.add_argument("--runs", type=int, default=10)
+    parser.add_argument("--average", type=float, default=0.8, help="averaged fraction of each run")
+
+
+def check(args, extra=()):
+    """Exit naming the option, its value and the valid range of the first one out of range;
+    `extra` adds (option, ok, valid range) triples."""
+    limits = (("--gamma", args.gamma > 0, "> 0"), ("--dt", args.dt > 0, "> 0"),
+              ("--time", args.time >= args.dt, ">= dt"), ("--runs", args.runs >= 2, ">= 2"),
+              ("--average", 0 < args.average <= 1, "in (0, 1]")) + tuple(extra)
+    for name, ok, valid in limits:
+        if not ok:
+            sys.exit(f"{name} = {getattr(args, name[2:])} is out of range: it must be {valid}")
+
+
+def summary(label, args, errors):
+    """`label: T_C - 1 = mean +- standard error % over n runs ...` of the runs' relative errors
+    (at least two: a standard error needs them)."""
+    n = len(errors)
+    mean = sum(errors) / n
+    se = math.sqrt(sum((e - mean) ** 2 for e in errors) / (n - 1) / n)
+    return (f"{label} gamma {args.gamma:g} dt {args.dt:g}: T_C - 1 = {100 * mean:+.3f} "
+            f"+- {100 * se:.3f} % over {n} runs of {args.time:g} time units "
+            f"(last {100 * args.average:g} %)")
