@@ -31,16 +31,12 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 import protocol
-
-N = 500
-DENSITY = 3.0
-A = 25.0
+from protocol import A, N, SIDE
 SKIN = 0.5
 SAMPLE_TIME = 0.5  # time units between dumped frames
 
 
 def lammps_input(scheme, gamma, dt, steps, equil, every, seed, dump):
-    side = (N / DENSITY) ** (1.0 / 3.0)
     sigma = math.sqrt(2.0 * gamma)
     if scheme == "vv":
         integrator = (f"pair_style dpd 1.0 1.0 {seed + 2}\npair_coeff 1 1 {A} {gamma} 1.0\n"
@@ -52,7 +48,7 @@ def lammps_input(scheme, gamma, dt, steps, equil, every, seed, dump):
 units lj
 atom_style atomic
 comm_modify vel yes
-region box block 0 {side!r} 0 {side!r} 0 {side!r}
+region box block 0 {SIDE!r} 0 {SIDE!r} 0 {SIDE!r}
 create_box 1 box
 create_atoms 1 random {N} {seed} NULL
 mass * 1.0
@@ -115,7 +111,7 @@ def one_run(args, seed):
     side, xs = frames(dump)
     os.remove(dump)
     sums = np.array([gradient_and_laplacian(x, side) for x in xs])
-    if not np.all(np.isfinite(sums)) or len(sums) == 0:
+    if len(sums) == 0 or not np.all(np.isfinite(sums)):
         return seed, None, "non-finite or no frames (blow-up)"
     return seed, sums[:, 0].mean() / sums[:, 1].mean() - 1.0, f"{len(xs)} frames"
 

@@ -1,7 +1,15 @@
-"""The papers' run protocol as command-line options, and the summary line both scripts print."""
+"""The papers' standard box and run protocol as command-line options, and the summary line
+both scripts print."""
 
 import math
 import sys
+
+# The standard box of papers 000 and 003: N particles at this density, repulsion A
+# (k_BT = m = r_c = 1).
+N = 500
+DENSITY = 3.0
+A = 25.0
+SIDE = (N / DENSITY) ** (1.0 / 3.0)
 
 
 def add_arguments(parser):

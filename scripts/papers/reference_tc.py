@@ -28,10 +28,7 @@ import numba
 import numpy as np
 
 import protocol
-
-N = 500
-DENSITY = 3.0
-A = 25.0
+from protocol import A, N, SIDE
 
 
 @numba.njit(cache=True)
@@ -107,29 +104,30 @@ def pair_sweep(p, ii, jj, ee, rr, gamma, h, exact, shuffle):
 
 @numba.njit(cache=True)
 def run(scheme_aboba, gamma, h, steps, first_sample, seed, shuffle):
+    """T_C - 1 over the steps from `first_sample` on of one run from a uniform random start, or
+    NaN if the forces became non-finite (a blow-up)."""
     np.random.seed(seed)
-    side = (N / DENSITY) ** (1.0 / 3.0)
-    q = np.random.random((N, 3)) * side
+    q = np.random.random((N, 3)) * SIDE
     p = np.random.normal(0.0, 1.0, (N, 3))
     num = 0.0
     den = 0.0
-    ii, jj, ee, rr, f, _, _ = pairs_and_forces(q, side)
+    ii, jj, ee, rr, f, _, _ = pairs_and_forces(q, SIDE)
     for step in range(steps):
         if scheme_aboba:
             q += 0.5 * h * p
-            ii, jj, ee, rr, f, _, _ = pairs_and_forces(q, side)
+            ii, jj, ee, rr, f, _, _ = pairs_and_forces(q, SIDE)
             p += 0.5 * h * f
             pair_sweep(p, ii, jj, ee, rr, gamma, h, True, shuffle)
             p += 0.5 * h * f
             q += 0.5 * h * p
-            q %= side
-            _, _, _, _, _, fsq, lap = pairs_and_forces(q, side)
+            q %= SIDE
+            _, _, _, _, _, fsq, lap = pairs_and_forces(q, SIDE)
         else:
             pair_sweep(p, ii, jj, ee, rr, gamma, h, False, shuffle)
             p += 0.5 * h * f
             q += h * p
-            q %= side
-            ii, jj, ee, rr, f, fsq, lap = pairs_and_forces(q, side)
+            q %= SIDE
+            ii, jj, ee, rr, f, fsq, lap = pairs_and_forces(q, SIDE)
             p += 0.5 * h * f
         if not math.isfinite(fsq):
             return math.nan
