@@ -124,6 +124,7 @@ pub fn run(
         Some(r) => Some(Rdf::new(&sys, r.r_max, r.bins)?),
         None => None,
     };
+    let (rdf_stride, mut window_samples) = (scene.rdf_stride(dt), 0u64);
     let interval = every as f64 * dt;
     let mut vacf = match &scene.vacf {
         Some(v) => Some(Vacf::new(
@@ -173,7 +174,10 @@ pub fn run(
         let sampled = sys.step() % every == 0 || sys.step() == steps;
         if sampled && thermo_avg.wants(sys.step()) {
             thermo_avg.record(&thermo(&mut sys));
-            rdf.iter_mut().for_each(|r| r.record(&sys));
+            if window_samples % rdf_stride == 0 {
+                rdf.iter_mut().for_each(|r| r.record(&sys));
+            }
+            window_samples += 1;
             vacf.iter_mut().for_each(|v| v.record(&sys));
             flows.record(&mut sys);
             if scene.energy_balance && balance.is_none() {
@@ -311,6 +315,7 @@ mod tests {
             rdf: Some(RdfSpec {
                 r_max: 1.5,
                 bins: 30,
+                ..Default::default()
             }),
             ..Default::default()
         }
@@ -348,6 +353,32 @@ mod tests {
         assert_eq!(r.samples, 11);
         assert_eq!(r.force_evaluations_per_step, Some(1.0));
         assert!(r.kinetic_temperature.unwrap() > 0.5 && r.rdf.unwrap().len() == 30);
+    }
+
+    #[test]
+    fn g_of_r_is_recorded_every_interval_from_the_first_window_sample() {
+        let scheme = resolve("aboba").unwrap();
+        let g_of = |interval: Option<f64>| {
+            let mut scene = tiny();
+            scene.rdf.as_mut().unwrap().interval = interval;
+            let r = run(
+                &scene,
+                &job("aboba", 0.02, 3),
+                &scheme,
+                quiet(&AtomicBool::new(false)),
+            );
+            r.unwrap().rdf.unwrap()
+        };
+        // Samples are 0.1 apart: an interval of 0.1 records every one, as the default does.
+        assert_eq!(g_of(None), g_of(Some(0.1)));
+        // An interval of 2 exceeds the window (steps 50 to 100): only step 50 is recorded.
+        let mut sys = tiny().system(0.02, 3).unwrap();
+        sys.advance(&scheme, 50).unwrap();
+        let mut first = Rdf::new(&sys, 1.5, 30).unwrap();
+        first.record(&sys);
+        let expected: Vec<[f64; 2]> = first.g().into_iter().map(|(r, g)| [r, g]).collect();
+        assert_eq!(g_of(Some(2.0)), expected);
+        assert_ne!(g_of(Some(2.0)), g_of(None));
     }
 
     #[test]

@@ -88,6 +88,11 @@ pub struct RdfSpec {
     /// Histogram range; at most half the box edge.
     pub r_max: f64,
     pub bins: usize,
+    /// Time between g(r) records: every k-th sample of the averaging window, from its first,
+    /// with k = max(1, round(interval / (sample steps x dt))); default every sample. A record
+    /// costs an O(N^2) pass in boxes under 3 r_max, several times a step; runs that want
+    /// g(r) only to draw it can record it less often than they sample T_C.
+    pub interval: Option<f64>,
 }
 
 /// Velocity autocorrelation over the averaging window, reported as the diffusion coefficient.
@@ -180,6 +185,7 @@ impl Default for RdfSpec {
         RdfSpec {
             r_max: 2.5,
             bins: 50,
+            interval: None,
         }
     }
 }
@@ -491,6 +497,9 @@ impl Scene {
                 &format!("must be in (0, {half:.4}] (half the box edge)"),
             )?;
             require("rdf.bins", r.bins, r.bins >= 1, "must be at least 1")?;
+            if let Some(interval) = r.interval {
+                positive("rdf.interval", interval)?;
+            }
         }
         if let Some(v) = &self.vacf {
             positive("vacf.max_lag", v.max_lag)?;
@@ -533,6 +542,15 @@ impl Scene {
     /// Steps between samples at `dt` (at least 1).
     pub fn sample_every(&self, dt: f64) -> u64 {
         ((self.sample_interval / dt).round() as u64).max(1)
+    }
+
+    /// Samples between g(r) records at `dt` (at least 1); see [`RdfSpec::interval`].
+    pub fn rdf_stride(&self, dt: f64) -> u64 {
+        let sample = self.sample_every(dt) as f64 * dt;
+        match self.rdf.as_ref().and_then(|r| r.interval) {
+            Some(interval) => ((interval / sample).round() as u64).max(1),
+            None => 1,
+        }
     }
 
     /// The pair-force parameters.
@@ -770,6 +788,21 @@ mod tests {
     }
 
     #[test]
+    fn g_of_r_is_sampled_every_interval_in_whole_samples() {
+        let s = Scene::from_toml("[rdf]\ninterval = 0.5\n", "t").unwrap();
+        // Samples every 0.1 / 0.05 = 2 steps; 0.5 / 0.1 = 5 samples per g(r) record.
+        assert_eq!((s.sample_every(0.05), s.rdf_stride(0.05)), (2, 5));
+        // At dt = 0.3 every step is a sample (0.3 time units apart): 0.5 / 0.3 rounds to 2.
+        assert_eq!((s.sample_every(0.3), s.rdf_stride(0.3)), (1, 2));
+        // An interval shorter than the sampling records every sample.
+        assert_eq!(s.rdf_stride(2.0), 1);
+        assert_eq!(
+            Scene::from_toml("[rdf]\n", "t").unwrap().rdf_stride(0.05),
+            1
+        );
+    }
+
+    #[test]
     fn unknown_keys_and_invalid_values_name_the_key() {
         for (text, key) in [
             ("gama = 4.5", "gama"),
@@ -785,6 +818,7 @@ mod tests {
             ("average_fraction = 1.5", "average_fraction"),
             ("runs = 0", "runs"),
             ("[rdf]\nr_max = 9.0", "rdf.r_max"),
+            ("[rdf]\ninterval = 0.0", "rdf.interval"),
             ("[sweep]\ndt_factor = 1.0", "sweep.dt_factor"),
             ("[sweep]\ndt_min = 0.1\ndt_max = 0.01", "sweep.dt_max"),
             ("[sweep]\nreference = \"abo\"", "sweep.reference"),
