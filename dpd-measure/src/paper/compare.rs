@@ -72,8 +72,12 @@ pub fn compare(item: &Item, m: &Measurements) -> Vec<Comparison> {
             let Ok(mut printed) = parse_printed(text) else {
                 continue;
             };
-            if let Some(&relative) = item.published_precision.get(quantity) {
-                printed = printed.with_precision(relative);
+            let mut published = text.clone();
+            let grid = item.published_grid.get(quantity);
+            if let (Some(&factor), Printed::Number { value, .. }) = (grid, printed) {
+                let next = factor * value;
+                published = format!("{text} (next step {next:.*})", decimals(next));
+                printed = printed.as_grid_step_below(factor);
             }
             if printed == Printed::Absent {
                 continue;
@@ -96,7 +100,7 @@ pub fn compare(item: &Item, m: &Measurements) -> Vec<Comparison> {
                 scheme: row.scheme.clone(),
                 dt: row.dt,
                 quantity: quantity.clone(),
-                published: text.clone(),
+                published,
                 measured,
                 verdict,
             });
@@ -114,16 +118,24 @@ pub fn verdict(printed: Printed, measured: &Measured) -> Verdict {
         (_, Measured::Missing { reason }) => unresolved(reason),
         (Printed::Absent, _) => unresolved("nothing published"),
         (Printed::BlowUp, Measured::BlowUp) => Verdict::Agrees { sigmas: None },
-        (Printed::BlowUp, Measured::Value(_)) | (Printed::Number { .. }, Measured::BlowUp) => {
+        (Printed::BlowUp, Measured::Value(_))
+        | (Printed::Number { .. } | Printed::Interval { .. }, Measured::BlowUp) => {
             Verdict::Differs { sigmas: None }
         }
         (Printed::Number { value, uncertainty }, Measured::Value(v)) => {
-            number(value, uncertainty, *v)
+            let distance = |m: f64, sigma: f64| (m - value).abs() / sigma.hypot(uncertainty);
+            against(value, distance, *v)
+        }
+        (Printed::Interval { low, high }, Measured::Value(v)) => {
+            let distance = |m: f64, sigma: f64| (low - m).max(m - high).max(0.0) / sigma;
+            against(0.5 * (low + high), distance, *v)
         }
     }
 }
 
-fn number(published: f64, uncertainty: f64, m: Value) -> Verdict {
+/// The verdict on `m` against a published value near `published`, `distance(value, sigma)`
+/// apart in combined standard uncertainties.
+fn against(published: f64, distance: impl Fn(f64, f64) -> f64, m: Value) -> Verdict {
     let Some(sigma) = m.sigma else {
         return Verdict::Unresolved {
             reason: "no error bar (a single run)".into(),
@@ -138,8 +150,7 @@ fn number(published: f64, uncertainty: f64, m: Value) -> Verdict {
             ),
         };
     }
-    let combined = (sigma * sigma + uncertainty * uncertainty).sqrt();
-    let sigmas = (m.value - published).abs() / combined;
+    let sigmas = distance(m.value, sigma);
     if sigmas <= t {
         Verdict::Agrees {
             sigmas: Some(sigmas),
@@ -279,10 +290,11 @@ mod tests {
     }
 
     /// 003 Table 1's ABOBA: published 0.116, measured 0.1214 +- 0.0003 with ten runs. Beyond
-    /// the printed digits it differs; with the paper's stated precision (4 %: a reading of a
-    /// 15 % grid) it agrees, and DPD-S1 at gamma = 450 (0.0511 against 0.044) still differs.
+    /// the printed digits it differs; read as the largest step of the paper's 15 % grid below
+    /// 10 % (the crossing in [0.1155, 0.1340)) it agrees, as 0.1313 at gamma = 40.5 does, and
+    /// DPD-S1 at gamma = 450 (0.0511 against 0.044: [0.0435, 0.0512)) is inside too.
     #[test]
-    fn a_stated_precision_widens_the_published_uncertainty() {
+    fn a_grid_step_below_is_read_as_the_interval_to_the_next_step() {
         let ten_runs = |v: f64| {
             Measured::Value(Value {
                 value: v,
@@ -295,27 +307,33 @@ mod tests {
             verdict(p, &ten_runs(0.1214)),
             Verdict::Differs { .. }
         ));
-        let read = p.with_precision(0.04);
-        assert_eq!(
-            read,
-            Printed::Number {
-                value: 0.116,
-                uncertainty: 0.04 * 0.116
-            }
-        );
+        let read = p.as_grid_step_below(1.15);
+        let Printed::Interval { low, high } = read else {
+            panic!("{read:?}")
+        };
+        assert!((low - 0.1155).abs() < 1e-12 && (high - 1.15 * 0.1165).abs() < 1e-12);
+        for crossing in [0.1214, 0.1313] {
+            assert_eq!(
+                verdict(read, &ten_runs(crossing)),
+                Verdict::Agrees { sigmas: Some(0.0) }
+            );
+        }
+        // 0.0015 beyond the next step: 5 sigma, beyond t = 2.26; 0.0003 beyond: 1 sigma.
+        let Verdict::Differs { sigmas: Some(s) } = verdict(read, &ten_runs(high + 0.0015)) else {
+            panic!("0.0015 beyond the interval agrees")
+        };
+        assert!((s - 5.0).abs() < 1e-9);
         assert!(matches!(
-            verdict(read, &ten_runs(0.1214)),
+            verdict(read, &ten_runs(low - 0.0003)),
             Verdict::Agrees { .. }
         ));
-        let s1 = parse_printed("0.044").unwrap().with_precision(0.04);
         assert!(matches!(
-            verdict(s1, &ten_runs(0.0511)),
+            verdict(read, &Measured::BlowUp),
             Verdict::Differs { .. }
         ));
-        // Printed digits coarser than the stated precision are kept.
         assert_eq!(
-            parse_printed("0.5").unwrap().with_precision(0.01),
-            parse_printed("0.5").unwrap()
+            parse_printed("blow-up").unwrap().as_grid_step_below(1.15),
+            Printed::BlowUp
         );
     }
 }

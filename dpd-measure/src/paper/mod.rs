@@ -16,9 +16,10 @@
 //!   the paper says the scheme fails); the printed digits give the published uncertainty;
 //! - `not_compared`: quantities that are published but not comparable (e.g. CPU times of the
 //!   paper's machine), each with its reason in `notes`;
-//! - `[published_precision]`: quantity to a relative standard uncertainty of the published
-//!   values beyond their printed digits, where the paper says its numbers are approximate
-//!   (e.g. critical steps read off a coarse grid), with the reason in `notes`.
+//! - `[published_grid]`: quantity to the factor between successive steps of the paper's grid,
+//!   where the paper prints the largest step it tested below its threshold (a critical step
+//!   "beyond which" the error exceeds 10 %): the crossing it saw lies between that step and
+//!   the next; the reason in `notes`.
 //!
 //! An item without `[scene]` and `panels` (a table of coefficients, a figure that is not a
 //! DPD simulation) is listed with its notes and not run.
@@ -58,23 +59,32 @@ pub struct PublishedRow {
 }
 
 /// A printed value read back: the number with its standard uncertainty (half a unit of its
-/// last printed digit, or the item's stated precision), or the paper's statement that the
-/// scheme blew up.
+/// last printed digit), the interval a paper's reading puts the value in, or the paper's
+/// statement that the scheme blew up.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Printed {
-    Number { value: f64, uncertainty: f64 },
+    Number {
+        value: f64,
+        uncertainty: f64,
+    },
+    /// The value lies in [low, high), nothing more said (`[published_grid]` of an item).
+    Interval {
+        low: f64,
+        high: f64,
+    },
     BlowUp,
     Absent,
 }
 
 impl Printed {
-    /// With a relative standard uncertainty `relative` where that is larger than the printed
-    /// digits' (`[published_precision]` of an item).
-    pub fn with_precision(self, relative: f64) -> Printed {
+    /// Read as the largest step of a grid with `factor` between steps below a threshold: the
+    /// crossing lies between it and the next step, [p, factor p), widened by the printed
+    /// digits (half a unit of the last one each way).
+    pub fn as_grid_step_below(self, factor: f64) -> Printed {
         match self {
-            Printed::Number { value, uncertainty } => Printed::Number {
-                value,
-                uncertainty: uncertainty.max(relative * value.abs()),
+            Printed::Number { value, uncertainty } => Printed::Interval {
+                low: value - uncertainty,
+                high: factor * (value + uncertainty),
             },
             other => other,
         }
@@ -101,7 +111,7 @@ struct ItemFile {
     #[serde(default)]
     not_compared: Vec<String>,
     #[serde(default)]
-    published_precision: BTreeMap<String, f64>,
+    published_grid: BTreeMap<String, f64>,
     #[serde(default)]
     published: Vec<PublishedRow>,
 }
@@ -131,9 +141,9 @@ pub struct Item {
     pub panels: Vec<String>,
     pub plot: Option<figure::PlotSpec>,
     pub not_compared: Vec<String>,
-    /// Relative standard uncertainty of the published values of a quantity, where larger than
-    /// half a unit of their last printed digit (see [`Printed::with_precision`]).
-    pub published_precision: BTreeMap<String, f64>,
+    /// Factor between the steps of the paper's grid, for quantities it prints as the largest
+    /// grid step below a threshold (see [`Printed::as_grid_step_below`]).
+    pub published_grid: BTreeMap<String, f64>,
     pub published: Vec<PublishedRow>,
 }
 
@@ -219,7 +229,7 @@ impl Item {
             panels: f.panels,
             plot: f.plot,
             not_compared: f.not_compared,
-            published_precision: f.published_precision,
+            published_grid: f.published_grid,
             published: f.published,
         };
         item.validate()?;
@@ -247,22 +257,22 @@ impl Item {
                 }
             }
         }
-        for (quantity, &precision) in &self.published_precision {
+        for (quantity, &factor) in &self.published_grid {
             if !measure::is_quantity(quantity) {
                 return Err(file_error(
                     &self.path,
                     format!(
-                        "published_precision {quantity:?} is not a measured quantity; valid: {}",
+                        "published_grid {quantity:?} is not a measured quantity; valid: {}",
                         measure::QUANTITIES.join(", ")
                     ),
                 ));
             }
-            if !(precision > 0.0 && precision < 1.0) {
+            if !(factor > 1.0 && factor <= 10.0) {
                 return Err(file_error(
                     &self.path,
                     format!(
-                        "published_precision {quantity} = {precision}: a relative uncertainty \
-                         is a number in (0, 1), e.g. 0.04 for 4 %"
+                        "published_grid {quantity} = {factor}: the factor between grid steps \
+                         is a number in (1, 10], e.g. 1.15 for steps 15 % apart"
                     ),
                 ));
             }
@@ -418,27 +428,27 @@ mod shipped {
     }
 
     #[test]
-    fn a_published_precision_is_checked_by_name_and_range() {
+    fn a_published_grid_is_checked_by_name_and_range() {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("t.toml");
-        let item = |precision: &str| {
+        let item = |grid: &str| {
             let text = format!(
                 "kind = \"table\"\ntitle = \"t\"\ncitation = \"c\"\n\
-                 [published_precision]\n{precision}\n"
+                 [published_grid]\n{grid}\n"
             );
             std::fs::write(&path, text).unwrap();
             Item::load(&path, "r")
         };
-        let ok = item("critical_dt_10 = 0.04").unwrap();
-        assert_eq!(ok.published_precision["critical_dt_10"], 0.04);
-        let e = item("critical_dt = 0.04").unwrap_err().to_string();
+        let ok = item("critical_dt_10 = 1.15").unwrap();
+        assert_eq!(ok.published_grid["critical_dt_10"], 1.15);
+        let e = item("critical_dt = 1.15").unwrap_err().to_string();
         assert!(
             e.contains("critical_dt") && e.contains("critical_dt_10"),
             "{e}"
         );
-        let e = item("critical_dt_10 = 4.0").unwrap_err().to_string();
+        let e = item("critical_dt_10 = 0.15").unwrap_err().to_string();
         assert!(
-            e.contains("critical_dt_10 = 4") && e.contains("(0, 1)"),
+            e.contains("critical_dt_10 = 0.15") && e.contains("(1, 10]"),
             "{e}"
         );
     }
