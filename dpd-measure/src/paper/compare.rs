@@ -331,6 +331,11 @@ mod tests {
             verdict(read, &Measured::BlowUp),
             Verdict::Differs { .. }
         ));
+        let s1 = parse_printed("0.044").unwrap().as_grid_step_below(1.15);
+        assert!(matches!(
+            verdict(s1, &ten_runs(0.0511)),
+            Verdict::Agrees { .. }
+        ));
         assert_eq!(
             parse_printed("blow-up").unwrap().as_grid_step_below(1.15),
             Printed::BlowUp

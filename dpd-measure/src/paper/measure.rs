@@ -36,6 +36,10 @@ pub const QUANTITIES: [&str; 13] = [
     "channel_temperature",
 ];
 
+/// The quantities of [`QUANTITIES`] that are time steps, which a paper may print as steps of
+/// its grid (`[published_grid]`).
+pub const STEPS: [&str; 3] = ["critical_dt_10", "critical_dt_1", "stability_dt"];
+
 /// Relative uncertainty given to each scheme's measured cost per step in an efficiency: the
 /// runs share two cores with other work, and repeated runs of the main job differed by up to
 /// this much (docs/results.md).

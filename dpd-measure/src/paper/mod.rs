@@ -258,12 +258,12 @@ impl Item {
             }
         }
         for (quantity, &factor) in &self.published_grid {
-            if !measure::is_quantity(quantity) {
+            if !measure::STEPS.contains(&quantity.as_str()) {
                 return Err(file_error(
                     &self.path,
                     format!(
-                        "published_grid {quantity:?} is not a measured quantity; valid: {}",
-                        measure::QUANTITIES.join(", ")
+                        "published_grid {quantity:?} is not a measured time step; valid: {}",
+                        measure::STEPS.join(", ")
                     ),
                 ));
             }
@@ -441,11 +441,10 @@ mod shipped {
         };
         let ok = item("critical_dt_10 = 1.15").unwrap();
         assert_eq!(ok.published_grid["critical_dt_10"], 1.15);
-        let e = item("critical_dt = 1.15").unwrap_err().to_string();
-        assert!(
-            e.contains("critical_dt") && e.contains("critical_dt_10"),
-            "{e}"
-        );
+        for key in ["critical_dt", "efficiency"] {
+            let e = item(&format!("{key} = 1.15")).unwrap_err().to_string();
+            assert!(e.contains(key) && e.contains("stability_dt"), "{e}");
+        }
         let e = item("critical_dt_10 = 0.15").unwrap_err().to_string();
         assert!(
             e.contains("critical_dt_10 = 0.15") && e.contains("(1, 10]"),
