@@ -33,10 +33,14 @@ def published(paper_dir, quantity):
     return found
 
 
+def decimals(printed):
+    """Digits after the decimal point of `printed`."""
+    return len(printed.split(".")[1]) if "." in printed else 0
+
+
 def interval(printed):
     """(low, high) of the numbers that print as `printed`."""
-    decimals = len(printed.split(".")[1]) if "." in printed else 0
-    half = 0.5 * 10.0 ** -decimals
+    half = 0.5 * 10.0 ** -decimals(printed)
     return float(printed) - half, float(printed) + half
 
 
@@ -85,8 +89,7 @@ def main():
         drawn = []
         for v in printed:
             x = float(v) * args.factor ** (rng.random() - 0.5)
-            decimals = len(v.split(".")[1]) if "." in v else 0
-            drawn.append(interval(f"{x:.{decimals}f}"))
+            drawn.append(interval(f"{x:.{decimals(v)}f}"))
         hits += best_starts(drawn, args.factor, args.s_min)[0] >= top
     print(f"chance of {top} or more on one grid: {hits} of {args.trials} random draws")
 
