@@ -56,9 +56,9 @@ impl<S: Scheme + ?Sized> Scheme for Box<S> {
 
 impl System {
     /// Take `steps` steps of `scheme`, each guarded: a step that produces a non-finite position
-    /// or momentum, or that may have moved a particle by more than half the shortest box edge
-    /// (the sum over its drifts of the largest drift length exceeds it), is undone and
-    /// reported; the system is then in the state after the last good step.
+    /// or momentum, or that may have moved a particle between two checks of the neighbour
+    /// list by more than half the shortest box edge less the skin, is undone and reported; the
+    /// system is then in the state after the last good step.
     pub fn advance<S: Scheme + ?Sized>(&mut self, scheme: &S, steps: u64) -> Result<(), BlowUp> {
         self.guarded_steps(steps, scheme.name(), |sys| scheme.step(sys))
     }

@@ -82,3 +82,56 @@ fn particle_data_follow_the_ids_through_sorts_and_undo() {
     assert!(consistent(&huge));
     assert!(common::same_bits(&before, &huge));
 }
+
+/// The drift bound counts how far a particle may have travelled between two checks of the
+/// neighbour list, not along the whole step: one particle drifts 0.3 box edges forth and back
+/// (the other particles are at rest). With a force evaluation between the two drifts the list
+/// checks the positions in between and the step is good; without it the 0.6 edges add up and
+/// the step is a blow-up. A skin lowers the limit from half the edge to half of (edge - skin).
+#[test]
+fn the_drift_bound_is_the_travel_between_checks_of_the_neighbour_list() {
+    use dpd_core::flow::{drift, kick};
+    use dpd_core::{System, Vec3};
+    fn forth_and_back(sys: &mut System) {
+        drift(sys, 1.0);
+        kick(sys, 0.0);
+        drift(sys, -1.0);
+    }
+    fn forth_then_back(sys: &mut System) {
+        drift(sys, 1.0);
+        drift(sys, -1.0);
+    }
+    let moving = |speed: f64, skin: f64| {
+        let base = common::standard_box(4.5, 0.01, 3);
+        let mut p = vec![Vec3::zeros(); base.len()];
+        p[7] = Vec3::new(speed, 0.0, 0.0);
+        System::builder(
+            base.params().clone(),
+            *base.boundary(),
+            base.positions().to_vec(),
+        )
+        .momenta(p)
+        .skin(skin)
+        .build()
+        .unwrap()
+    };
+    let edge = common::standard_box(4.5, 0.01, 3).boundary().min_length();
+    let mut sys = moving(0.3 * edge, 0.0);
+    sys.advance(&common::Steps("forth-and-back", forth_and_back), 1)
+        .unwrap();
+    let err = moving(0.3 * edge, 0.0)
+        .advance(&common::Steps("forth-then-back", forth_then_back), 1)
+        .unwrap_err();
+    assert!(
+        err.reason
+            .contains("between two checks of the neighbour list"),
+        "{err}"
+    );
+    // One drift of 0.45 edges: within half the edge without a skin, beyond half of (edge -
+    // 0.2 edges) with one.
+    let one_drift = common::Steps("one-drift", |sys| drift(sys, 1.0));
+    moving(0.45 * edge, 0.0).advance(&one_drift, 1).unwrap();
+    assert!(moving(0.45 * edge, 0.2 * edge)
+        .advance(&one_drift, 1)
+        .is_err());
+}

@@ -10,9 +10,9 @@
 //! averaged over the second half of the run, at the end of full steps.
 //!
 //! The blow-up guard of `System::advance` also trips when a particle may have moved more than
-//! half the box edge in one step; in a small box with light particles (thermal speed
-//! `sqrt(k_B T / m)`, 32 at m = 1e-3) that happens at large dt even for a scheme that would
-//! otherwise be stable, and is reported as a blow-up with that reason.
+//! half the box edge between two checks of the neighbour list; in a small box with light
+//! particles (thermal speed `sqrt(k_B T / m)`, 32 at m = 1e-3) that happens at large dt even
+//! for a scheme that would otherwise be stable, and is reported as a blow-up with that reason.
 
 use dpd_core::error::ParamError;
 use dpd_core::init::{cubic_box, maxwell_momenta, uniform_positions};

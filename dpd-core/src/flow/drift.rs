@@ -10,8 +10,9 @@ use rayon::prelude::*;
 /// ([`crate::LeesEdwards::wrap`]). With walls, frozen particles stay put and a particle
 /// carried out of the channel is reflected ([`crate::walls`]).
 ///
-/// Adds the largest single-particle displacement to the step's drift bound used by blow-up
-/// detection, and drops every position-dependent cache.
+/// Adds the largest single-particle displacement to the travel since the neighbour list last
+/// checked the positions, which bounds the step's drift for blow-up detection, and drops
+/// every position-dependent cache.
 #[inline]
 pub fn drift(sys: &mut System, h: f64) {
     let Motion {

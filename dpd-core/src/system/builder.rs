@@ -237,6 +237,7 @@ impl SystemBuilder {
             impulses: None,
             heat: None,
             counters: Counters::default(),
+            travel: 0.0,
             drift_bound: 0.0,
             backup: Default::default(),
         };

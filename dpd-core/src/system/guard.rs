@@ -22,14 +22,16 @@ pub(crate) struct Backup {
     shear: Option<LeesEdwards>,
     impulses: Option<ImpulseVirial>,
     heat: Option<f64>,
+    travel: f64,
 }
 
 impl System {
     /// Take `steps` steps with `step`, each guarded: a step that produces a non-finite
-    /// position or momentum, or that may have moved a particle by more than half the shortest
-    /// box edge (the sum over its drifts of the largest drift length exceeds it), is undone
-    /// and reported as a blow-up of `scheme`; the system is then in the state after the last
-    /// good step.
+    /// position or momentum, or that may have moved a particle between two checks of the
+    /// neighbour list by more than half the shortest box edge less the skin (the sum of the
+    /// largest drift lengths since the last check exceeds it: the check could no longer tell
+    /// the displacement from that to another image), is undone and reported as a blow-up of
+    /// `scheme`; the system is then in the state after the last good step.
     pub(crate) fn guarded_steps(
         &mut self,
         steps: u64,
@@ -59,15 +61,17 @@ impl System {
         backup.shear = self.shear;
         backup.impulses = self.impulses;
         backup.heat = self.heat;
+        backup.travel = self.travel;
         self.drift_bound = 0.0;
         step(self);
+        let (edge, skin) = (self.bx.min_length(), self.list.skin());
         let reason = if !self.drift_bound.is_finite() || !finite(&self.q) || !finite(&self.p) {
             Some("a position or momentum became non-finite".to_string())
-        } else if self.drift_bound > 0.5 * self.bx.min_length() {
+        } else if self.drift_bound > 0.5 * (edge - skin) {
             Some(format!(
-                "a particle may have moved {:.3e} in one step, more than half the box edge {}",
+                "a particle may have moved {:.3e} between two checks of the neighbour list, \
+                 more than half the box edge {edge} less the skin {skin}",
                 self.drift_bound,
-                self.bx.min_length()
             ))
         } else {
             None
@@ -90,6 +94,7 @@ impl System {
                 self.shear = backup.shear;
                 self.impulses = backup.impulses;
                 self.heat = backup.heat;
+                self.travel = backup.travel;
                 Err(BlowUp {
                     step: self.step,
                     scheme: scheme.to_string(),

@@ -84,7 +84,11 @@ pub struct System {
     /// pay for it; see [`crate::observe::EnergyBalance`]).
     pub(crate) heat: Option<f64>,
     pub(crate) counters: Counters,
-    /// Sum over this step's drifts of the largest single-particle drift length.
+    /// Largest single-particle drift length summed over the drifts since the neighbour list
+    /// last checked the positions (length units; NaN once a drift length was NaN).
+    pub(crate) travel: f64,
+    /// Largest value `travel` reached during this step: a bound on how far a particle moved
+    /// between two checks of the neighbour list.
     pub(crate) drift_bound: f64,
     /// The undo copy of the guarded step, kept to reuse its allocations.
     pub(crate) backup: Backup,
@@ -294,7 +298,8 @@ impl System {
         self.counters.pair_distance_evaluations += 1;
     }
 
-    /// Rebuild the neighbour list if the positions call for it.
+    /// Rebuild the neighbour list if the positions call for it. Either way the list has now
+    /// checked the positions, and the travel since the last check starts again.
     fn prepare_list(&mut self) {
         if self
             .list
@@ -302,6 +307,7 @@ impl System {
         {
             self.rebuild_list();
         }
+        self.travel = 0.0;
     }
 
     /// Re-sort the particles into the cell order of a fresh grid and build the list on them.

@@ -51,10 +51,16 @@ impl System {
     }
 
     /// The positions moved, by at most `largest_displacement` per particle (NaN if any
-    /// position is NaN): the guarded step's drift bound grows by it and every cache tied to the
+    /// position is NaN): the travel since the last check of the neighbour list grows by it,
+    /// the guarded step's drift bound is at least that travel, and every cache tied to the
     /// positions is stale.
     pub(crate) fn moved(&mut self, largest_displacement: f64) {
-        self.drift_bound += largest_displacement;
+        self.travel += largest_displacement;
+        self.drift_bound = if self.travel.is_nan() || self.drift_bound.is_nan() {
+            f64::NAN
+        } else {
+            self.drift_bound.max(self.travel)
+        };
         self.positions_changed();
     }
 
