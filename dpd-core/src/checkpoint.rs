@@ -26,7 +26,7 @@ use std::io::Write;
 use std::path::Path;
 
 const MAGIC: &[u8; 8] = b"DPDCHKPT";
-const VERSION: u32 = 5;
+const VERSION: u32 = 6;
 const HEADER: usize = 8 + 4 + 8 + 4;
 
 #[derive(Serialize, Deserialize)]
@@ -51,6 +51,9 @@ struct Payload {
     /// Lees-Edwards `[rate, offset, travel]`, now and at the last neighbour-list build.
     shear: Option<[f64; 3]>,
     list_shear: Option<[f64; 3]>,
+    /// Drift since the list last checked the positions (the blow-up guard's bound carries it
+    /// into the next step).
+    travel: f64,
     /// Walls `[lower, upper, velocity lower, velocity upper]` and the frozen particles.
     walls: Option<([f64; 4], Vec<bool>)>,
     body_force: Option<Vec3>,
@@ -96,6 +99,7 @@ impl System {
             list_reference: self.list.reference().to_vec(),
             shear: shear_state(self.shear.as_ref()),
             list_shear: shear_state(self.list.reference_shear()),
+            travel: self.travel,
             walls: self.walls.as_ref().map(|w| {
                 let [v0, v1] = w.walls.velocity();
                 ([w.walls.lower(), w.walls.upper(), v0, v1], w.frozen.clone())
@@ -195,6 +199,7 @@ impl System {
         // sliding boundary; the saved offset is restored as it was.
         sys.shear = shear;
         sys.step = payload.step;
+        sys.travel = payload.travel;
         if !payload.list_reference.is_empty() {
             if payload.list_reference.len() != sys.len() {
                 return Err(invalid(crate::ParamError::new(

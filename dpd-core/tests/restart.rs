@@ -96,3 +96,33 @@ fn overwriting_keeps_a_readable_checkpoint() {
     assert_eq!(System::load_checkpoint(&path).unwrap().0.step(), 3);
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
 }
+
+/// The blow-up guard's travel since the last check of the neighbour list carries across
+/// steps, and across a checkpoint: a scheme that only drifts (no force, so the list never
+/// checks) moves one particle 0.3 box edges per step, and its second step is a blow-up
+/// whether or not the run was restarted in between.
+#[test]
+fn restart_keeps_the_travel_of_the_blow_up_guard() {
+    use dpd_core::flow::drift;
+    use dpd_core::Vec3;
+    let base = common::standard_box(4.5, 0.04, 8);
+    let speed = 0.3 * base.boundary().min_length();
+    let mut p = vec![Vec3::zeros(); base.len()];
+    p[0] = Vec3::new(0.0, speed, 0.0);
+    let mut sys = System::builder(
+        base.params().clone(),
+        *base.boundary(),
+        base.positions().to_vec(),
+    )
+    .momenta(p)
+    .build()
+    .unwrap();
+    let only_drift = common::Steps("only-drift", |sys| drift(sys, 1.0));
+    sys.advance(&only_drift, 1).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("run.ckpt");
+    sys.save_checkpoint(&path, "only-drift").unwrap();
+    let straight = sys.advance(&only_drift, 1).unwrap_err();
+    let (mut restarted, _) = System::load_checkpoint(&path).unwrap();
+    assert_eq!(restarted.advance(&only_drift, 1).unwrap_err(), straight);
+}
