@@ -29,9 +29,11 @@ impl System {
     /// Take `steps` steps with `step`, each guarded: a step that produces a non-finite
     /// position or momentum, or that may have moved a particle between two checks of the
     /// neighbour list by more than half the shortest box edge less the skin (the sum of the
-    /// largest drift lengths since the last check exceeds it: the check could no longer tell
-    /// the displacement from that to another image), is undone and reported as a blow-up of
-    /// `scheme`; the system is then in the state after the last good step.
+    /// largest drift lengths since the last check exceeds it: with a skin, the list's
+    /// displacement test could no longer tell that move from one to another image; without
+    /// one, such a move between two force evaluations is taken as a blow-up), is undone and
+    /// reported as a blow-up of `scheme`; the system is then in the state after the last
+    /// good step.
     pub(crate) fn guarded_steps(
         &mut self,
         steps: u64,
