@@ -101,25 +101,12 @@ fn the_drift_bound_is_the_travel_between_checks_of_the_neighbour_list() {
         drift(sys, 1.0);
         drift(sys, -1.0);
     }
-    let moving = |speed: f64, skin: f64| {
-        let base = common::standard_box(4.5, 0.01, 3);
-        let mut p = vec![Vec3::zeros(); base.len()];
-        p[7] = Vec3::new(speed, 0.0, 0.0);
-        System::builder(
-            base.params().clone(),
-            *base.boundary(),
-            base.positions().to_vec(),
-        )
-        .momenta(p)
-        .skin(skin)
-        .build()
-        .unwrap()
-    };
-    let edge = common::standard_box(4.5, 0.01, 3).boundary().min_length();
-    let mut sys = moving(0.3 * edge, 0.0);
+    // Speeds and skins in box edges.
+    let moving = |speed: f64, skin: f64| common::one_moving(Vec3::new(speed, 0.0, 0.0), skin);
+    let mut sys = moving(0.3, 0.0);
     sys.advance(&common::Steps("forth-and-back", forth_and_back), 1)
         .unwrap();
-    let err = moving(0.3 * edge, 0.0)
+    let err = moving(0.3, 0.0)
         .advance(&common::Steps("forth-then-back", forth_then_back), 1)
         .unwrap_err();
     assert!(
@@ -130,8 +117,6 @@ fn the_drift_bound_is_the_travel_between_checks_of_the_neighbour_list() {
     // One drift of 0.45 edges: within half the edge without a skin, beyond half of (edge -
     // 0.2 edges) with one.
     let one_drift = common::Steps("one-drift", |sys| drift(sys, 1.0));
-    moving(0.45 * edge, 0.0).advance(&one_drift, 1).unwrap();
-    assert!(moving(0.45 * edge, 0.2 * edge)
-        .advance(&one_drift, 1)
-        .is_err());
+    moving(0.45, 0.0).advance(&one_drift, 1).unwrap();
+    assert!(moving(0.45, 0.2).advance(&one_drift, 1).is_err());
 }

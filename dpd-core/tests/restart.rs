@@ -105,18 +105,7 @@ fn overwriting_keeps_a_readable_checkpoint() {
 fn restart_keeps_the_travel_of_the_blow_up_guard() {
     use dpd_core::flow::drift;
     use dpd_core::Vec3;
-    let base = common::standard_box(4.5, 0.04, 8);
-    let speed = 0.3 * base.boundary().min_length();
-    let mut p = vec![Vec3::zeros(); base.len()];
-    p[0] = Vec3::new(0.0, speed, 0.0);
-    let mut sys = System::builder(
-        base.params().clone(),
-        *base.boundary(),
-        base.positions().to_vec(),
-    )
-    .momenta(p)
-    .build()
-    .unwrap();
+    let mut sys = common::one_moving(Vec3::new(0.0, 0.3, 0.0), 0.0);
     let only_drift = common::Steps("only-drift", |sys| drift(sys, 1.0));
     sys.advance(&only_drift, 1).unwrap();
     let dir = tempfile::tempdir().unwrap();

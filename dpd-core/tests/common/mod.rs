@@ -4,7 +4,7 @@
 use dpd_core::flow::{bbk, drift, full_force, kick, ou, trotter};
 use dpd_core::init::equilibrium_box;
 use dpd_core::params::ParamsBuilder;
-use dpd_core::{Params, Scheme, SweepOrder, System};
+use dpd_core::{Params, Scheme, SweepOrder, System, Vec3};
 
 /// A system of `n` unit-mass particles at `density` with the given parameters, Maxwell
 /// momenta and uniform positions.
@@ -20,6 +20,26 @@ pub fn system(n: usize, density: f64, params: ParamsBuilder, dt: f64, seed: u64)
 /// k_B T = 1) with friction `gamma`.
 pub fn standard_box(gamma: f64, dt: f64, seed: u64) -> System {
     system(500, 3.0, Params::builder().gamma(gamma), dt, seed)
+}
+
+/// The standard box (gamma = 4.5, seed 3) with every particle at rest but the first, which
+/// moves at `edges_per_time` times the shortest box edge per unit time, and a neighbour-list
+/// skin of `skin_edges` times that edge: drifts of a known largest length for the blow-up
+/// guard.
+pub fn one_moving(edges_per_time: Vec3, skin_edges: f64) -> System {
+    let base = standard_box(4.5, 0.01, 3);
+    let mut p = vec![Vec3::zeros(); base.len()];
+    let edge = base.boundary().min_length();
+    p[0] = edges_per_time * edge;
+    System::builder(
+        base.params().clone(),
+        *base.boundary(),
+        base.positions().to_vec(),
+    )
+    .momenta(p)
+    .skin(skin_edges * edge)
+    .build()
+    .unwrap()
 }
 
 /// Bitwise equality of two systems' positions and momenta, particle order included.
