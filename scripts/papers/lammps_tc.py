@@ -1,6 +1,6 @@
 """Configurational temperature of LAMMPS's own DPD integrators, for comparison with the papers.
 
-Runs the standard box of papers 000 and 003 (N = 500, density 3, a = 25, k_BT = m = r_c = 1,
+Runs the standard box of papers 000 and 003 (N = 500, density 3 or `--density`, a = 25, k_BT = m = r_c = 1,
 Groot-Warren weights, uniform random start, Gaussian momenta) in LAMMPS without the dpd plugin:
 
 - `vv`: pair dpd + fix nve (velocity Verlet, the dissipative force on the half-kicked velocity);
@@ -31,12 +31,12 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 import protocol
-from protocol import A, N, SIDE
+from protocol import A, N
 SKIN = 0.5
 SAMPLE_TIME = 0.5  # time units between dumped frames
 
 
-def lammps_input(scheme, gamma, dt, steps, equil, every, seed, dump):
+def lammps_input(scheme, side, gamma, dt, steps, equil, every, seed, dump):
     sigma = math.sqrt(2.0 * gamma)
     if scheme == "vv":
         integrator = (f"pair_style dpd 1.0 1.0 {seed + 2}\npair_coeff 1 1 {A} {gamma} 1.0\n"
@@ -48,7 +48,7 @@ def lammps_input(scheme, gamma, dt, steps, equil, every, seed, dump):
 units lj
 atom_style atomic
 comm_modify vel yes
-region box block 0 {SIDE!r} 0 {SIDE!r} 0 {SIDE!r}
+region box block 0 {side!r} 0 {side!r} 0 {side!r}
 create_box 1 box
 create_atoms 1 random {N} {seed} NULL
 mass * 1.0
@@ -98,12 +98,12 @@ def one_run(args, seed):
     steps_total = int(round(args.time / args.dt))
     equil = int(round((1.0 - args.average) * steps_total))
     every = max(1, int(round(SAMPLE_TIME / args.dt)))
-    tag = f"{args.scheme}-g{args.gamma:g}-dt{args.dt:g}-s{seed}"
+    tag = f"{args.scheme}-d{args.density:g}-g{args.gamma:g}-dt{args.dt:g}-s{seed}"
     dump = os.path.join(args.work, tag + ".dump")
     path = os.path.join(args.work, tag + ".in")
     with open(path, "w") as f:
-        f.write(lammps_input(args.scheme, args.gamma, args.dt, steps_total - equil, equil, every,
-                             seed, dump))
+        f.write(lammps_input(args.scheme, protocol.side(args), args.gamma, args.dt,
+                             steps_total - equil, equil, every, seed, dump))
     out = subprocess.run([args.lmp, "-in", path, "-log", "none", "-screen", "none"],
                          capture_output=True, text=True, cwd=args.work)
     if out.returncode != 0 or not os.path.exists(dump):

@@ -4,16 +4,22 @@ both scripts print."""
 import math
 import sys
 
-# The standard box of papers 000 and 003: N particles at this density, repulsion A
-# (k_BT = m = r_c = 1).
+# The standard box of papers 000 and 003: N particles, repulsion A (k_BT = m = r_c = 1), at the
+# density of `--density`: 3 in 003, 4 in 000's tables (L = 5; docs/papers.md).
 N = 500
-DENSITY = 3.0
 A = 25.0
-SIDE = (N / DENSITY) ** (1.0 / 3.0)
+
+
+def side(args):
+    """Edge of the cubic box holding N particles at `--density`."""
+    return (N / args.density) ** (1.0 / 3.0)
 
 
 def add_arguments(parser):
-    """--gamma, --dt, --time, --runs and --average (the averaged fraction of each run)."""
+    """--gamma, --dt, --time, --runs, --average (the averaged fraction of each run) and
+    --density."""
+    parser.add_argument("--density", type=float, default=3.0,
+                        help="particles per unit volume: 3 (003), 4 (000's tables, L = 5)")
     parser.add_argument("--gamma", type=float, required=True)
     parser.add_argument("--dt", type=float, required=True)
     parser.add_argument("--time", type=float, default=1000.0)
@@ -24,7 +30,7 @@ def add_arguments(parser):
 def check(args, extra=()):
     """Exit naming the option, its value and the valid range of the first one out of range;
     `extra` adds (option, ok, valid range) triples."""
-    limits = (("--gamma", args.gamma > 0, "> 0"), ("--dt", args.dt > 0, "> 0"),
+    limits = (("--density", args.density > 0, "> 0"), ("--gamma", args.gamma > 0, "> 0"), ("--dt", args.dt > 0, "> 0"),
               ("--time", args.time >= args.dt, ">= dt"), ("--runs", args.runs >= 2, ">= 2"),
               ("--average", 0 < args.average <= 1, "in (0, 1]")) + tuple(extra)
     for name, ok, valid in limits:
@@ -38,6 +44,6 @@ def summary(label, args, errors):
     n = len(errors)
     mean = sum(errors) / n
     se = math.sqrt(sum((e - mean) ** 2 for e in errors) / (n - 1) / n)
-    return (f"{label} gamma {args.gamma:g} dt {args.dt:g}: T_C - 1 = {100 * mean:+.3f} "
+    return (f"{label} density {args.density:g} gamma {args.gamma:g} dt {args.dt:g}: T_C - 1 = {100 * mean:+.3f} "
             f"+- {100 * se:.3f} % over {n} runs of {args.time:g} time units "
             f"(last {100 * args.average:g} %)")

@@ -9,7 +9,7 @@ random` in a new random order each step, NumPy's normal generator. Each step of
 - `dpd-s1`: Shardlow's pair update for each pair in turn (explicit half, then implicit half,
   one normal), then velocity Verlet.
 
-The standard box of papers 000 and 003 (N = 500, density 3, a = 25, k_BT = m = r_c = 1,
+The standard box of papers 000 and 003 (N = 500, density 3 or `--density`, a = 25, k_BT = m = r_c = 1,
 w_D = w_R^2 = (1 - r)^2, uniform random start, Gaussian momenta); T_C = <sum |grad U|^2> /
 <sum lap U> at the end of every step of the last `--average` fraction; T_C - 1 per run and the
 mean with its standard error over the runs.
@@ -28,7 +28,7 @@ import numba
 import numpy as np
 
 import protocol
-from protocol import A, N, SIDE
+from protocol import A, N
 
 
 @numba.njit(cache=True)
@@ -103,31 +103,31 @@ def pair_sweep(p, ii, jj, ee, rr, gamma, h, exact, shuffle):
 
 
 @numba.njit(cache=True)
-def run(scheme_aboba, gamma, h, steps, first_sample, seed, shuffle):
-    """T_C - 1 over the steps from `first_sample` on of one run from a uniform random start, or
-    NaN if the forces became non-finite (a blow-up)."""
+def run(scheme_aboba, gamma, h, steps, first_sample, seed, shuffle, side):
+    """T_C - 1 over the steps from `first_sample` on of one run from a uniform random start in
+    the cube of edge `side`, or NaN if the forces became non-finite (a blow-up)."""
     np.random.seed(seed)
-    q = np.random.random((N, 3)) * SIDE
+    q = np.random.random((N, 3)) * side
     p = np.random.normal(0.0, 1.0, (N, 3))
     num = 0.0
     den = 0.0
-    ii, jj, ee, rr, f, _, _ = pairs_and_forces(q, SIDE)
+    ii, jj, ee, rr, f, _, _ = pairs_and_forces(q, side)
     for step in range(steps):
         if scheme_aboba:
             q += 0.5 * h * p
-            ii, jj, ee, rr, f, _, _ = pairs_and_forces(q, SIDE)
+            ii, jj, ee, rr, f, _, _ = pairs_and_forces(q, side)
             p += 0.5 * h * f
             pair_sweep(p, ii, jj, ee, rr, gamma, h, True, shuffle)
             p += 0.5 * h * f
             q += 0.5 * h * p
-            q %= SIDE
-            _, _, _, _, _, fsq, lap = pairs_and_forces(q, SIDE)
+            q %= side
+            _, _, _, _, _, fsq, lap = pairs_and_forces(q, side)
         else:
             pair_sweep(p, ii, jj, ee, rr, gamma, h, False, shuffle)
             p += 0.5 * h * f
             q += h * p
-            q %= SIDE
-            ii, jj, ee, rr, f, fsq, lap = pairs_and_forces(q, SIDE)
+            q %= side
+            ii, jj, ee, rr, f, fsq, lap = pairs_and_forces(q, side)
             p += 0.5 * h * f
         if not math.isfinite(fsq):
             return math.nan
@@ -150,7 +150,7 @@ def main():
     errors = []
     for seed in range(1, args.runs + 1):
         err = run(args.scheme == "aboba", args.gamma, args.dt, steps, first, seed,
-                  args.order == "random")
+                  args.order == "random", protocol.side(args))
         print(f"seed {seed}: T_C - 1 = {100 * err:+.3f} %" if math.isfinite(err)
               else f"seed {seed}: blew up", flush=True)
         if math.isfinite(err):
