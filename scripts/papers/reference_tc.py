@@ -1,4 +1,4 @@
-"""ABOBA and DPD-S1 written again from paper 003's equations, to check the engine against them.
+"""ABOBA, DPD-S1 and M-Shardlow-2 written again from the papers' equations, to check the engine.
 
 A second implementation, sharing no code with dpd-core: O(N^2) pair search, pairs swept in
 index order (i < j, both ascending, as a serial pair-list code visits them) or with `--order
@@ -7,7 +7,10 @@ random` in a new random order each step, NumPy's normal generator. Each step of
 - `aboba`: A(h/2), conservative forces, B(h/2), the exact pair OU update of eqs. 2.15-2.17 for
   each pair in turn (e, w at the half-step positions), B(h/2), A(h/2);
 - `dpd-s1`: Shardlow's pair update for each pair in turn (explicit half, then implicit half,
-  one normal), then velocity Verlet.
+  one normal), then velocity Verlet;
+- `m-shardlow-2` (paper 000, section 2.3, steps 1-4): velocity Verlet over x1 h, x0 h, x1 h
+  (x1 = 1 / (2 - 2^(1/3)), x0 = 1 - 2 x1), then Shardlow's pair update for each pair within
+  r_c at the new positions.
 
 The standard box of papers 000 and 003 (N = 500, density 3 or `--density`, a = 25, k_BT = m = r_c = 1,
 w_D = w_R^2 = (1 - r)^2, uniform random start, Gaussian momenta); T_C = <sum |grad U|^2> /
@@ -17,7 +20,8 @@ mean with its standard error over the runs.
     python scripts/papers/reference_tc.py --scheme aboba --gamma 450 --dt 0.116 --runs 10
 
 Needs numpy and numba (`pip install numpy numba` into any virtual environment); 10 runs of
-1000 time units take 2 to 4 minutes per point on one core (ABOBA, DPD-S1).
+1000 time units take 2 to 4 minutes per point on one core (ABOBA, DPD-S1; M-Shardlow-2, three
+force evaluations per step, about three times that).
 """
 
 import argparse
@@ -30,6 +34,10 @@ import numpy as np
 import protocol
 from protocol import A, N
 
+SCHEMES = ("aboba", "dpd-s1", "m-shardlow-2")
+# Yoshida's triple jump, the sign of x0 that 000 shows to be right.
+X1 = 1.0 / (2.0 - 2.0 ** (1.0 / 3.0))
+X0 = 1.0 - 2.0 * X1
 
 @numba.njit(cache=True)
 def add_pair(a, i, j, c, x, y, z):
@@ -103,9 +111,9 @@ def pair_sweep(p, ii, jj, ee, rr, gamma, h, exact, shuffle):
 
 
 @numba.njit(cache=True)
-def run(scheme_aboba, gamma, h, steps, first_sample, seed, shuffle, side):
-    """T_C - 1 over the steps from `first_sample` on of one run from a uniform random start in
-    the cube of edge `side`, or NaN if the forces became non-finite (a blow-up)."""
+def run(scheme, gamma, h, steps, first_sample, seed, shuffle, side):
+    """T_C - 1 over the steps from `first_sample` on of one run of SCHEMES[scheme] from a uniform
+    random start in the cube of edge `side`, or NaN if the forces became non-finite (a blow-up)."""
     np.random.seed(seed)
     q = np.random.random((N, 3)) * side
     p = np.random.normal(0.0, 1.0, (N, 3))
@@ -113,7 +121,7 @@ def run(scheme_aboba, gamma, h, steps, first_sample, seed, shuffle, side):
     den = 0.0
     ii, jj, ee, rr, f, _, _ = pairs_and_forces(q, side)
     for step in range(steps):
-        if scheme_aboba:
+        if scheme == 0:
             q += 0.5 * h * p
             ii, jj, ee, rr, f, _, _ = pairs_and_forces(q, side)
             p += 0.5 * h * f
@@ -122,13 +130,21 @@ def run(scheme_aboba, gamma, h, steps, first_sample, seed, shuffle, side):
             q += 0.5 * h * p
             q %= side
             _, _, _, _, _, fsq, lap = pairs_and_forces(q, side)
-        else:
+        elif scheme == 1:
             pair_sweep(p, ii, jj, ee, rr, gamma, h, False, shuffle)
             p += 0.5 * h * f
             q += h * p
             q %= side
             ii, jj, ee, rr, f, fsq, lap = pairs_and_forces(q, side)
             p += 0.5 * h * f
+        else:
+            for x in (X1, X0, X1):
+                p += 0.5 * x * h * f
+                q += x * h * p
+                q %= side
+                ii, jj, ee, rr, f, fsq, lap = pairs_and_forces(q, side)
+                p += 0.5 * x * h * f
+            pair_sweep(p, ii, jj, ee, rr, gamma, h, False, shuffle)
         if not math.isfinite(fsq):
             return math.nan
         if step >= first_sample:
@@ -139,7 +155,7 @@ def run(scheme_aboba, gamma, h, steps, first_sample, seed, shuffle, side):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--scheme", choices=["aboba", "dpd-s1"], required=True)
+    ap.add_argument("--scheme", choices=SCHEMES, required=True)
     protocol.add_arguments(ap)
     ap.add_argument("--order", choices=["index", "random"], default="index",
                     help="pair order of the sweeps: i < j ascending, or a new permutation per step")
@@ -149,7 +165,7 @@ def main():
     first = int(round((1.0 - args.average) * steps))
     errors = []
     for seed in range(1, args.runs + 1):
-        err = run(args.scheme == "aboba", args.gamma, args.dt, steps, first, seed,
+        err = run(SCHEMES.index(args.scheme), args.gamma, args.dt, steps, first, seed,
                   args.order == "random", protocol.side(args))
         print(f"seed {seed}: T_C - 1 = {100 * err:+.3f} %" if math.isfinite(err)
               else f"seed {seed}: blew up", flush=True)
