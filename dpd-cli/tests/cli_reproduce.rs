@@ -1,7 +1,7 @@
 //! `dpd reproduce`: the list of paper items and the reduced protocol of every item.
 mod cli_support;
 
-use cli_support::dpd;
+use cli_support::{dpd, write};
 use std::path::Path;
 
 fn items_dir() -> String {
@@ -79,4 +79,62 @@ fn all_quick_runs_every_item() {
         .path()
         .join("q/002-figure-6.quick/002-figure-6-profile-msetd-dt0.001.svg")
         .exists());
+}
+
+/// An item of per-dt rows keeps its finished runs in `<id>.points.json`: a second invocation
+/// of the full protocol runs none of them again (their measured ms per step would differ), and
+/// a file written for another scene is refused, naming it and the key.
+#[test]
+fn a_point_item_keeps_its_runs_and_resumes() {
+    let dir = tempfile::tempdir().unwrap();
+    let paper = dir.path().join("items/900");
+    std::fs::create_dir_all(&paper).unwrap();
+    write(&paper, "paper.toml", "reference = '''a test paper'''\n");
+    let item = |n: usize| {
+        format!(
+            "kind = \"table\"\ntitle = \"tiny\"\ncitation = \"Table 1\"\n\
+             [scene]\nn = {n}\ntime = 0.5\naverage_fraction = 0.5\nruns = 2\n\
+             [[published]]\nscheme = \"vv\"\nmethod = \"VV\"\ndt = 0.05\n\
+             kinetic_temperature = \"1.0\"\n\
+             [[published]]\nscheme = \"aboba\"\nmethod = \"ABOBA\"\ndt = 0.05\n\
+             kinetic_temperature = \"1.0\"\n"
+        )
+    };
+    write(&paper, "table-1.toml", &item(100));
+    let args = [
+        "reproduce",
+        "900-table-1",
+        "--items",
+        "items",
+        "--out",
+        "out",
+    ];
+    let first = dpd(dir.path(), &args);
+    assert!(
+        first.status.success(),
+        "{}",
+        String::from_utf8_lossy(&first.stderr)
+    );
+    let file = dir.path().join("out/900-table-1.points.json");
+    let stored = std::fs::read_to_string(&file).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&stored).unwrap();
+    assert_eq!(v["points"].as_array().unwrap().len(), 4, "{stored}");
+    let again = dpd(dir.path(), &args);
+    assert!(again.status.success());
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), stored);
+    let measured = |o: &std::process::Output| {
+        String::from_utf8_lossy(&o.stdout)
+            .lines()
+            .filter(|l| l.contains("kinetic_temperature"))
+            .map(String::from)
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(measured(&again), measured(&first));
+    write(&paper, "table-1.toml", &item(120));
+    let other = dpd(dir.path(), &args);
+    let e = String::from_utf8_lossy(&other.stderr);
+    assert!(
+        !other.status.success() && e.contains("900-table-1.points.json") && e.contains("n differs"),
+        "{e}"
+    );
 }

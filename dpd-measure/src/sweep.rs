@@ -59,11 +59,19 @@ pub struct SweepResults {
     pub complete: bool,
 }
 
-/// The part of a results file that a resumed sweep reads back.
+/// The part of a results file that a resumed run reads back: a sweep's results, or the
+/// finished runs of a paper item without a sweep ([`write_finished`]).
 #[derive(Deserialize)]
 struct Stored {
     scene: Scene,
     points: Vec<RunResult>,
+}
+
+/// What [`write_finished`] writes: the scene and its finished runs, the fields of [`Stored`].
+#[derive(Serialize)]
+struct Finished<'a> {
+    scene: &'a Scene,
+    points: &'a [RunResult],
 }
 
 /// A sweep that cannot start or cannot keep its results.
@@ -110,14 +118,18 @@ pub fn plan(scene: &Scene) -> Vec<Job> {
 
 /// The planned runs of `scene` that are not among `finished`.
 pub fn pending(scene: &Scene, finished: &[RunResult]) -> Vec<Job> {
-    plan(scene)
-        .into_iter()
+    unfinished(plan(scene), finished)
+}
+
+/// The `jobs` that are not among `finished`.
+pub fn unfinished(jobs: Vec<Job>, finished: &[RunResult]) -> Vec<Job> {
+    jobs.into_iter()
         .filter(|j| !finished.iter().any(|p| p.job().matches(j)))
         .collect()
 }
 
-/// Read the finished points of an earlier sweep of the same physical scene from `path`;
-/// nothing if the file does not exist.
+/// Read the finished points of an earlier sweep or paper item of the same physical scene from
+/// `path`; nothing if the file does not exist.
 pub fn load_finished(path: &Path, scene: &Scene) -> Result<Vec<RunResult>, SweepError> {
     let error = |message: String| SweepError::Results {
         path: path.display().to_string(),
@@ -266,11 +278,23 @@ impl SweepResults {
 
     /// Write the results as JSON to `path`, atomically (a temporary file renamed over it).
     pub fn write_json(&self, path: &Path) -> std::io::Result<()> {
-        let text = serde_json::to_string_pretty(self).map_err(std::io::Error::other)?;
-        let tmp = path.with_extension("json.tmp");
-        std::fs::write(&tmp, text)?;
-        std::fs::rename(&tmp, path)
+        write_atomically(path, self)
     }
+}
+
+/// Write `scene` and its finished runs `points` to `path` in the form [`load_finished`] reads
+/// back, atomically.
+pub fn write_finished(path: &Path, scene: &Scene, points: &[RunResult]) -> std::io::Result<()> {
+    write_atomically(path, &Finished { scene, points })
+}
+
+/// `value` as pretty JSON to `path`, through a temporary file renamed over it, so that an
+/// interruption leaves the old file or the new one.
+fn write_atomically(path: &Path, value: &impl Serialize) -> std::io::Result<()> {
+    let text = serde_json::to_string_pretty(value).map_err(std::io::Error::other)?;
+    let tmp = path.with_extension("json.tmp");
+    std::fs::write(&tmp, text)?;
+    std::fs::rename(&tmp, path)
 }
 
 fn raw_efficiency(s: &SchemeSummary) -> Option<f64> {

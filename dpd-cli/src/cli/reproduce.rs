@@ -156,7 +156,7 @@ pub fn main(args: Args) -> ExitCode {
             return ExitCode::FAILURE;
         }
         if progress::stop_flag().load(Ordering::Relaxed) {
-            println!("interrupted: run the same command again to resume the sweeps");
+            println!("interrupted: run the same command again to resume");
             return ExitCode::from(INTERRUPTED);
         }
     }

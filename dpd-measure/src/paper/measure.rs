@@ -91,9 +91,10 @@ pub struct Measurements {
     pub sweep: Option<SweepResults>,
 }
 
-/// Run `item`'s scene (the `quick` one or the full protocol): its sweep, written to
-/// `out/<id>[.quick].sweep.json` after every point and resumed from there (full protocol), or the (scheme, dt) points of its published rows times the
-/// scene's seeds. `None` for an item without a scene.
+/// Run `item`'s scene (the `quick` one or the full protocol): its sweep, or the (scheme, dt)
+/// points of its published rows times the scene's seeds. The finished runs are written to
+/// `out/<id>[.quick].sweep.json` or `.points.json` after every run, and the full protocol
+/// resumes from there. `None` for an item without a scene.
 pub fn run_item(
     item: &Item,
     quick: bool,
@@ -106,18 +107,23 @@ pub fn run_item(
     else {
         return Ok(None);
     };
-    if scene.sweep.is_some() {
-        let json = out.join(format!(
-            "{}{}.sweep.json",
-            item.id,
-            if quick { ".quick" } else { "" }
-        ));
-        // A quick run is always fresh; a full one resumes.
-        let finished = if quick {
-            Vec::new()
+    let json = out.join(format!(
+        "{}{}.{}.json",
+        item.id,
+        if quick { ".quick" } else { "" },
+        if scene.sweep.is_some() {
+            "sweep"
         } else {
-            load_finished(&json, &scene)?
-        };
+            "points"
+        }
+    ));
+    // A quick run is always fresh; a full one resumes.
+    let finished = if quick {
+        Vec::new()
+    } else {
+        load_finished(&json, &scene)?
+    };
+    if scene.sweep.is_some() {
         let save = |r: &SweepResults| {
             // A results file that cannot be written only loses resumability.
             let _ = r.write_json(&json);
@@ -140,9 +146,16 @@ pub fn run_item(
             .map_err(|e| ParamError::new("published.scheme", &job.scheme, e.to_string()))?;
         schemes.insert(job.scheme.clone(), scheme);
     }
-    let points = Mutex::new(Vec::new());
-    let on_result = |r: RunResult| lock(&points).push(r);
-    run_parallel(&scene, &jobs, &schemes, control, &on_result)?;
+    let pending = sweep::unfinished(jobs, &finished);
+    let points = Mutex::new(finished);
+    let on_result = |r: RunResult| {
+        let mut points = lock(&points);
+        points.push(r);
+        // A file that cannot be written only loses resumability; an interrupted run is
+        // kept for this printout and run again by the next invocation.
+        let _ = sweep::write_finished(&json, &scene, &points);
+    };
+    run_parallel(&scene, &pending, &schemes, control, &on_result)?;
     let mut points = points.into_inner().unwrap_or_else(|e| e.into_inner());
     points.sort_by(|a, b| {
         (&a.scheme, a.dt, a.seed)
