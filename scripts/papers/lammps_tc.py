@@ -1,7 +1,8 @@
 """Configurational temperature of LAMMPS's own DPD integrators, for comparison with the papers.
 
-Runs the standard box of papers 000 and 003 (N = 500, density 3 or `--density`, a = 25, k_BT = m = r_c = 1,
-Groot-Warren weights, uniform random start, Gaussian momenta) in LAMMPS without the dpd plugin:
+Runs the standard box of papers 000 and 003 (N = 500, density 3 or `--density`, a = 25,
+k_BT = m = r_c = 1, Groot-Warren weights, uniform random start, Gaussian momenta) in LAMMPS
+without the dpd plugin:
 
 - `vv`: pair dpd + fix nve (velocity Verlet, the dissipative force on the half-kicked velocity);
 - `shardlow`: pair dpd/fdt + fix shardlow + fix nve (Shardlow's S1 splitting, DPD-S1: one

@@ -30,9 +30,10 @@ def add_arguments(parser):
 def check(args, extra=()):
     """Exit naming the option, its value and the valid range of the first one out of range;
     `extra` adds (option, ok, valid range) triples."""
-    limits = (("--density", args.density > 0, "> 0"), ("--gamma", args.gamma > 0, "> 0"), ("--dt", args.dt > 0, "> 0"),
-              ("--time", args.time >= args.dt, ">= dt"), ("--runs", args.runs >= 2, ">= 2"),
-              ("--average", 0 < args.average <= 1, "in (0, 1]")) + tuple(extra)
+    limits = (("--density", args.density > 0, "> 0"), ("--gamma", args.gamma > 0, "> 0"),
+              ("--dt", args.dt > 0, "> 0"), ("--time", args.time >= args.dt, ">= dt"),
+              ("--runs", args.runs >= 2, ">= 2"), ("--average", 0 < args.average <= 1, "in (0, 1]"))
+    limits += tuple(extra)
     for name, ok, valid in limits:
         if not ok:
             sys.exit(f"{name} = {getattr(args, name[2:])} is out of range: it must be {valid}")
@@ -44,6 +45,6 @@ def summary(label, args, errors):
     n = len(errors)
     mean = sum(errors) / n
     se = math.sqrt(sum((e - mean) ** 2 for e in errors) / (n - 1) / n)
-    return (f"{label} density {args.density:g} gamma {args.gamma:g} dt {args.dt:g}: T_C - 1 = {100 * mean:+.3f} "
-            f"+- {100 * se:.3f} % over {n} runs of {args.time:g} time units "
-            f"(last {100 * args.average:g} %)")
+    return (f"{label} density {args.density:g} gamma {args.gamma:g} dt {args.dt:g}: "
+            f"T_C - 1 = {100 * mean:+.3f} +- {100 * se:.3f} % over {n} runs of {args.time:g} "
+            f"time units (last {100 * args.average:g} %)")

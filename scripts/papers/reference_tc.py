@@ -12,10 +12,10 @@ random` in a new random order each step, NumPy's normal generator. Each step of
   (x1 = 1 / (2 - 2^(1/3)), x0 = 1 - 2 x1), then Shardlow's pair update for each pair within
   r_c at the new positions.
 
-The standard box of papers 000 and 003 (N = 500, density 3 or `--density`, a = 25, k_BT = m = r_c = 1,
-w_D = w_R^2 = (1 - r)^2, uniform random start, Gaussian momenta); T_C = <sum |grad U|^2> /
-<sum lap U> at the end of every step of the last `--average` fraction; T_C - 1 per run and the
-mean with its standard error over the runs.
+The standard box of papers 000 and 003 (N = 500, density 3 or `--density`, a = 25,
+k_BT = m = r_c = 1, w_D = w_R^2 = (1 - r)^2, uniform random start, Gaussian momenta);
+T_C = <sum |grad U|^2> / <sum lap U> at the end of every step of the last `--average`
+fraction; T_C - 1 per run and the mean with its standard error over the runs.
 
     python scripts/papers/reference_tc.py --scheme aboba --gamma 450 --dt 0.116 --runs 10
 
@@ -34,10 +34,14 @@ import numpy as np
 import protocol
 from protocol import A, N
 
+# The schemes by name; `run` takes the index into SCHEMES (numba compiles integers), the
+# last one, M-Shardlow-2, being its final branch.
 SCHEMES = ("aboba", "dpd-s1", "m-shardlow-2")
+ABOBA, DPD_S1 = SCHEMES.index("aboba"), SCHEMES.index("dpd-s1")
 # Yoshida's triple jump, the sign of x0 that 000 shows to be right.
 X1 = 1.0 / (2.0 - 2.0 ** (1.0 / 3.0))
 X0 = 1.0 - 2.0 * X1
+
 
 @numba.njit(cache=True)
 def add_pair(a, i, j, c, x, y, z):
@@ -121,7 +125,7 @@ def run(scheme, gamma, h, steps, first_sample, seed, shuffle, side):
     den = 0.0
     ii, jj, ee, rr, f, _, _ = pairs_and_forces(q, side)
     for step in range(steps):
-        if scheme == 0:
+        if scheme == ABOBA:
             q += 0.5 * h * p
             ii, jj, ee, rr, f, _, _ = pairs_and_forces(q, side)
             p += 0.5 * h * f
@@ -130,14 +134,14 @@ def run(scheme, gamma, h, steps, first_sample, seed, shuffle, side):
             q += 0.5 * h * p
             q %= side
             _, _, _, _, _, fsq, lap = pairs_and_forces(q, side)
-        elif scheme == 1:
+        elif scheme == DPD_S1:
             pair_sweep(p, ii, jj, ee, rr, gamma, h, False, shuffle)
             p += 0.5 * h * f
             q += h * p
             q %= side
             ii, jj, ee, rr, f, fsq, lap = pairs_and_forces(q, side)
             p += 0.5 * h * f
-        else:
+        else:  # m-shardlow-2
             for x in (X1, X0, X1):
                 p += 0.5 * x * h * f
                 q += x * h * p
