@@ -9,20 +9,54 @@ use std::io::Write;
 /// Slab averages along `axis` (0 = x, 1 = y, 2 = z) over the samples recorded, of the mobile
 /// particles (frozen wall particles are left out):
 /// - number density: particles per slab volume, averaged over samples;
-/// - velocity: mass-weighted mean, `sum m v / sum m`;
-/// - temperature: of the velocities relative to that mean,
-///   `(sum m v.v - |sum m v|^2 / sum m) / (3 n)`, n the number of particle samples in the slab
-///   (the 3 degrees of freedom the mean removes are neglected: n is large).
+/// - velocity: mass-weighted mean over all samples, `sum m v / sum m`;
+/// - temperature: of the velocities relative to each sample's own slab mean, so a flow that
+///   changes between samples (a channel still accelerating) is not counted as heat:
+///   `sum_samples (sum m v.v - |sum m v|^2 / sum m) / sum_samples 3 (n - 1)`, n the slab's
+///   particles in the sample (the mean removes 3 degrees of freedom per slab and sample).
 #[derive(Clone, Debug)]
 pub struct Profile {
     axis: usize,
     length: f64,
     slab_volume: f64,
-    count: Vec<u64>,
-    mass: Vec<f64>,
-    momentum: Vec<Vec3>,
-    twice_ke: Vec<f64>,
+    /// Sums of the sample being recorded, one per slab.
+    sample: Vec<SlabSums>,
+    total: Vec<SlabTotals>,
     samples: u64,
+}
+
+/// Sums over the particles in one slab at one sample.
+#[derive(Clone, Copy, Debug, Default)]
+struct SlabSums {
+    count: u64,
+    mass: f64,
+    momentum: Vec3,
+    /// `sum p.p / m`.
+    twice_ke: f64,
+}
+
+/// Sums over the samples of one slab.
+#[derive(Clone, Copy, Debug, Default)]
+struct SlabTotals {
+    count: u64,
+    mass: f64,
+    momentum: Vec3,
+    /// Twice the kinetic energy relative to each sample's slab mean velocity.
+    twice_peculiar_ke: f64,
+    /// Degrees of freedom of those velocities, `3 (n - 1)` per sample.
+    dof: u64,
+}
+
+impl SlabTotals {
+    fn add(&mut self, s: &SlabSums) {
+        self.count += s.count;
+        self.mass += s.mass;
+        self.momentum += s.momentum;
+        if s.count > 1 {
+            self.twice_peculiar_ke += s.twice_ke - s.momentum.norm_squared() / s.mass;
+            self.dof += 3 * (s.count - 1);
+        }
+    }
 }
 
 /// One slab of a [`Profile`].
@@ -58,18 +92,17 @@ impl Profile {
             axis,
             length,
             slab_volume: bx.volume() / bins as f64,
-            count: vec![0; bins],
-            mass: vec![0.0; bins],
-            momentum: vec![Vec3::zeros(); bins],
-            twice_ke: vec![0.0; bins],
+            sample: vec![SlabSums::default(); bins],
+            total: vec![SlabTotals::default(); bins],
             samples: 0,
         })
     }
 
     /// Add the current state.
     pub fn record(&mut self, sys: &System) {
-        let bins = self.count.len();
+        let bins = self.sample.len();
         let scale = bins as f64 / self.length;
+        self.sample.fill(SlabSums::default());
         for ((q, p), (&m, &im)) in sys
             .positions()
             .iter()
@@ -79,11 +112,14 @@ impl Profile {
             if im == 0.0 {
                 continue;
             }
-            let k = ((q[self.axis] * scale) as usize).min(bins - 1);
-            self.count[k] += 1;
-            self.mass[k] += m;
-            self.momentum[k] += p;
-            self.twice_ke[k] += p.norm_squared() * im;
+            let slab = &mut self.sample[((q[self.axis] * scale) as usize).min(bins - 1)];
+            slab.count += 1;
+            slab.mass += m;
+            slab.momentum += p;
+            slab.twice_ke += p.norm_squared() * im;
+        }
+        for (total, sample) in self.total.iter_mut().zip(&self.sample) {
+            total.add(sample);
         }
         self.samples += 1;
     }
@@ -92,23 +128,19 @@ impl Profile {
         self.samples
     }
 
-    /// The slabs in order along the axis; velocity and temperature are NaN in a slab no
-    /// particle visited.
+    /// The slabs in order along the axis; velocity is NaN in a slab no particle visited,
+    /// temperature NaN in a slab that never held two particles at once.
     pub fn rows(&self) -> Vec<ProfileRow> {
-        let width = self.length / self.count.len() as f64;
-        (0..self.count.len())
-            .map(|k| {
-                let n = self.count[k] as f64;
-                let m = self.mass[k];
-                let v = self.momentum[k] / m;
-                let peculiar = self.twice_ke[k] - self.momentum[k].norm_squared() / m;
-                ProfileRow {
-                    position: (k as f64 + 0.5) * width,
-                    density: n / (self.samples.max(1) as f64 * self.slab_volume),
-                    velocity: v.into(),
-                    temperature: peculiar / (3.0 * n),
-                    count: self.count[k],
-                }
+        let width = self.length / self.total.len() as f64;
+        self.total
+            .iter()
+            .enumerate()
+            .map(|(k, t)| ProfileRow {
+                position: (k as f64 + 0.5) * width,
+                density: t.count as f64 / (self.samples.max(1) as f64 * self.slab_volume),
+                velocity: (t.momentum / t.mass).into(),
+                temperature: t.twice_peculiar_ke / t.dof as f64,
+                count: t.count,
             })
             .collect()
     }
@@ -120,8 +152,8 @@ impl Profile {
 }
 
 /// Write profile rows along `axis` (0, 1, 2) as CSV with a header line:
-/// `<axis>,density,vx,vy,vz,temperature,count` (`x`, `y` or `z` first); the velocity and
-/// temperature of an empty slab are empty fields.
+/// `<axis>,density,vx,vy,vz,temperature,count` (`x`, `y` or `z` first); a velocity or
+/// temperature that is not defined (see [`Profile::rows`]) is an empty field.
 pub fn write_profile_csv(
     axis: usize,
     rows: &[ProfileRow],
@@ -132,7 +164,7 @@ pub fn write_profile_csv(
         "{},density,vx,vy,vz,temperature,count",
         AXES[axis.min(2)]
     )?;
-    // A slab no particle visited has no velocity or temperature: empty fields, not NaN.
+    // Undefined values are empty fields, not NaN.
     let field = |x: f64| {
         if x.is_finite() {
             x.to_string()
@@ -199,8 +231,8 @@ mod tests {
         assert_eq!(rows[0].position, 1.0);
         assert_eq!(rows[0].density, 2.0 / 32.0);
         assert_eq!(rows[0].velocity, [2.0, 0.0, 0.0]);
-        // Velocities 1 and 3 about their mean 2: (1 + 1) / (3 * 2).
-        assert_eq!(rows[0].temperature, 2.0 / 6.0);
+        // Velocities 1 and 3 about their mean 2: (1 + 1) / (3 * (2 - 1)).
+        assert_eq!(rows[0].temperature, 2.0 / 3.0);
         assert_eq!(rows[1].velocity, [-1.0, 0.0, 0.0]);
         let mut csv = Vec::new();
         profile.write_csv(&mut csv).unwrap();
@@ -218,6 +250,35 @@ mod tests {
         assert_eq!(csv.lines().nth(1), Some("0.5,0,,,,,0"), "{csv}");
         assert_eq!(csv.lines().nth(4), Some("3.5,0,,,,,0"), "{csv}");
         assert_eq!(Profile::new(&sys, 3, 2).unwrap_err().field, "profile.axis");
+    }
+
+    /// A flow that speeds up between samples is not heat: each sample's velocities are taken
+    /// relative to that sample's slab mean. Against the mean over both samples (velocities 1, 3,
+    /// 11, 13 about 7) the temperature would be 104 / 12 instead of 2 / 3.
+    #[test]
+    fn an_accelerating_flow_is_not_heat() {
+        let bx = PeriodicBox::new([4.0, 4.0, 4.0]).unwrap();
+        let q = vec![Vec3::new(1.0, 0.5, 1.0), Vec3::new(2.0, 0.7, 1.0)];
+        let at = |v: [f64; 2]| {
+            System::builder(Params::builder().build().unwrap(), bx, q.clone())
+                .momenta(v.iter().map(|&v| Vec3::new(v, 0.0, 0.0)).collect())
+                .build()
+                .unwrap()
+        };
+        let (slow, fast) = (at([1.0, 3.0]), at([11.0, 13.0]));
+        let mut profile = Profile::new(&slow, 1, 1).unwrap();
+        profile.record(&slow);
+        profile.record(&fast);
+        let row = profile.rows()[0];
+        assert_eq!(row.velocity, [7.0, 0.0, 0.0]);
+        // (1 + 1 + 1 + 1) / (3 (2 - 1) + 3 (2 - 1)).
+        assert_eq!(row.temperature, 2.0 / 3.0);
+        // A slab that never held two particles at once has no temperature.
+        let alone = at([1.0, 3.0]);
+        let mut halves = Profile::new(&alone, 0, 4).unwrap();
+        halves.record(&alone);
+        assert!(halves.rows()[1].temperature.is_nan());
+        assert_eq!(halves.rows()[1].velocity, [1.0, 0.0, 0.0]);
     }
 
     #[test]

@@ -19,7 +19,8 @@ use std::sync::Mutex;
 /// efficiencies (critical dt per ms of a step, relative to the sweep's reference scheme) at
 /// both thresholds, and the largest stable grid dt. Per (scheme, dt): means over the runs'
 /// averages; `*_temperature_error` is |T - k_B T| / k_B T; `channel_temperature` is the
-/// particle-weighted mean of the slab temperatures of `[profile]` (the flow subtracted).
+/// particle-weighted mean of the slab temperatures of `[profile]` (each sample's slab velocity
+/// subtracted).
 pub const QUANTITIES: [&str; 13] = [
     "critical_dt_10",
     "critical_dt_1",
