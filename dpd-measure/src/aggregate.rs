@@ -122,11 +122,11 @@ impl Aggregate {
         }
     }
 
-    /// The error that decides the critical step: |relative error of `observable`|, infinite
-    /// when a run blew up or nothing was measured.
+    /// The error that decides the critical step: the signed relative error of `observable`,
+    /// infinite when a run blew up or nothing was measured.
     pub fn critical_error(&self, observable: Observable) -> f64 {
         match (self.stable, self.error_of(observable)) {
-            (true, Some(e)) => e.abs(),
+            (true, Some(e)) => e,
             _ => f64::INFINITY,
         }
     }

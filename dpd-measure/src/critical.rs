@@ -1,6 +1,7 @@
 //! The critical step size: the smallest dt at which an error reaches a threshold
 //! (algorithms.md section 7), by log-log interpolation between the last point below and the
-//! first point at or above it, never by extrapolation.
+//! first point at or above it, never by extrapolation; where the error changes sign between
+//! those two points the reading is flagged with the bracket that holds it.
 
 use serde::Serialize;
 use std::fmt;
@@ -11,6 +12,10 @@ use std::fmt;
 pub enum Critical {
     /// Interpolated (or hit exactly) at `dt`.
     At { dt: f64 },
+    /// Read at `dt` as for `At`, but the error changes sign between the last point below the
+    /// threshold (`below`) and the first at or above it (`above`): a power law of dt does not
+    /// pass through zero, so the data only place the critical dt in `(below, above]`.
+    SignChange { dt: f64, below: f64, above: f64 },
     /// The smallest dt already errs too much: the critical dt is below `dt_min`.
     BelowRange { dt_min: f64 },
     /// No point reaches the threshold: the critical dt is above `dt_max`.
@@ -24,7 +29,7 @@ impl Critical {
     /// The critical dt where it was found inside the grid.
     pub fn dt(self) -> Option<f64> {
         match self {
-            Critical::At { dt } => Some(dt),
+            Critical::At { dt } | Critical::SignChange { dt, .. } => Some(dt),
             _ => None,
         }
     }
@@ -34,6 +39,9 @@ impl fmt::Display for Critical {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
             Critical::At { dt } => write!(f, "{dt:.4}"),
+            Critical::SignChange { dt, below, above } => {
+                write!(f, "{dt:.4} (sign change in ({below:.4}, {above:.4}])")
+            }
             Critical::BelowRange { dt_min } => write!(f, "< {dt_min:.4}"),
             Critical::NotReached { dt_max } => write!(f, "> {dt_max:.4}"),
             Critical::BlowUp { below, above } => write!(f, "({below:.4}, {above:.4}] blow-up"),
@@ -41,19 +49,21 @@ impl fmt::Display for Critical {
     }
 }
 
-/// The critical dt of the curve `points` = `(dt, |error|)`, sorted by increasing dt; an
-/// infinite or NaN error marks a point that blew up. The first crossing counts. `None` for an
-/// empty curve.
+/// The critical dt of the curve `points` = `(dt, signed relative error)`, sorted by increasing
+/// dt, where |error| first reaches `threshold`; an infinite or NaN error marks a point that blew
+/// up. Between the two points around the crossing log |error| is taken as linear in log dt (a
+/// power law); where their errors have opposite signs the result is [`Critical::SignChange`].
+/// `None` for an empty curve.
 pub fn critical_dt(points: &[(f64, f64)], threshold: f64) -> Option<Critical> {
     let (&(dt_min, _), &(dt_max, _)) = (points.first()?, points.last()?);
     let Some(k) = points
         .iter()
-        .position(|&(_, e)| e.is_nan() || e >= threshold)
+        .position(|&(_, e)| e.is_nan() || e.abs() >= threshold)
     else {
         return Some(Critical::NotReached { dt_max });
     };
     let (dt_b, e_b) = points[k];
-    if e_b == threshold {
+    if e_b.abs() == threshold {
         return Some(Critical::At { dt: dt_b });
     }
     if k == 0 {
@@ -70,9 +80,17 @@ pub fn critical_dt(points: &[(f64, f64)], threshold: f64) -> Option<Critical> {
         // The log-log line from an error of exactly zero rises vertically at dt_b.
         return Some(Critical::At { dt: dt_b });
     }
-    let t = (threshold.ln() - e_a.ln()) / (e_b.ln() - e_a.ln());
-    Some(Critical::At {
-        dt: (dt_a.ln() + t * (dt_b.ln() - dt_a.ln())).exp(),
+    let (a, b) = (e_a.abs().ln(), e_b.abs().ln());
+    let t = (threshold.ln() - a) / (b - a);
+    let dt = (dt_a.ln() + t * (dt_b.ln() - dt_a.ln())).exp();
+    Some(if e_a * e_b < 0.0 {
+        Critical::SignChange {
+            dt,
+            below: dt_a,
+            above: dt_b,
+        }
+    } else {
+        Critical::At { dt }
     })
 }
 
@@ -93,11 +111,36 @@ mod tests {
     }
 
     #[test]
-    fn the_first_crossing_counts_and_sign_changes_do_not_matter() {
-        // |error| of a curve that goes 5 %, 12 %, 3 % (sign change), 20 %.
-        let curve = [(0.05, 0.05), (0.1, 0.12), (0.15, 0.03), (0.2, 0.2)];
+    fn the_first_crossing_counts() {
+        // A curve that goes 5 %, 12 %, -3 %, 20 %.
+        let curve = [(0.05, 0.05), (0.1, 0.12), (0.15, -0.03), (0.2, 0.2)];
         let dt = critical_dt(&curve, 0.1).unwrap().dt().unwrap();
         assert!(dt > 0.05 && dt < 0.1, "{dt}");
+        // Negative errors cross too.
+        let cold = [(0.05, -0.05), (0.1, -0.2)];
+        let dt = critical_dt(&cold, 0.1).unwrap().dt().unwrap();
+        assert_relative_eq!(dt, 0.05 * 2f64.powf(0.5), max_relative = 1e-12);
+    }
+
+    /// An error through zero is no power of dt: the reading is kept, with the bracket. Here
+    /// -2 % at 0.1 and +8 % at 0.2 (a sign change) around 5 %, +8 % and +32 % at 0.2 and 0.4
+    /// (none) around 10 %.
+    #[test]
+    fn a_sign_change_is_flagged_with_its_bracket() {
+        let curve = [(0.05, -0.01), (0.1, -0.02), (0.2, 0.08), (0.4, 0.32)];
+        let Some(Critical::SignChange { dt, below, above }) = critical_dt(&curve, 0.05) else {
+            panic!("{:?}", critical_dt(&curve, 0.05));
+        };
+        assert_eq!((below, above), (0.1, 0.2));
+        assert_relative_eq!(
+            dt,
+            0.1 * 2f64.powf(2.5f64.ln() / 4f64.ln()),
+            max_relative = 1e-12
+        );
+        let c = critical_dt(&curve, 0.04).unwrap();
+        assert_eq!(c.to_string(), "0.1414 (sign change in (0.1000, 0.2000])");
+        let c = critical_dt(&curve, 0.1).unwrap();
+        assert!(matches!(c, Critical::At { .. }), "{c:?}");
     }
 
     #[test]

@@ -280,8 +280,11 @@ impl Measurements {
     }
 
     /// The critical dt at threshold `which` of [`sweep::THRESHOLDS`], with half the spread
-    /// of the crossings of |error| - s and |error| + s (s the standard error of each point's
-    /// relative error over the seeds) as its error.
+    /// of the crossings of error - s and error + s (s the standard error of each point's
+    /// relative error over the seeds) as its error. Where the error changes sign at the
+    /// crossing ([`Critical::SignChange`]) the log-log reading is a guess inside the bracket,
+    /// so the standard deviation of a uniform spread over the bracket, (above - below) / sqrt
+    /// 12, is added in quadrature.
     fn critical(&self, scheme: &str, which: usize) -> Measured {
         let Some(sweep) = &self.sweep else {
             return missing("not a sweep");
@@ -295,14 +298,13 @@ impl Measurements {
                     let e = r.critical_error(sweep.observable);
                     let s = stderr_of_error(r, sweep.observable, self.scene.kbt, base_eta);
                     // A blow-up (infinite error) stays one, and an unshifted curve needs no
-                    // error bar: `f64::max` would turn the NaN of `inf + 0 * NaN` into the
-                    // floor and a blown-up point into a tiny error.
+                    // error bar (`inf + 0 * NaN` would be NaN).
                     let v = if shift == 0.0 || e.is_infinite() {
                         e
                     } else {
                         e + shift * s.unwrap_or(f64::NAN)
                     };
-                    (r.dt, if v.is_nan() { v } else { v.max(1e-12) })
+                    (r.dt, v)
                 })
                 .collect()
         };
@@ -313,9 +315,13 @@ impl Measurements {
             return missing(format!("not found inside the grid: {mid}"));
         };
         let bound = |shift| critical_dt(&curve(shift), threshold).and_then(Critical::dt);
+        let bracket = match mid {
+            Critical::SignChange { below, above, .. } => (above - below) / 12f64.sqrt(),
+            _ => 0.0,
+        };
         let sigma = bound(1.0)
             .zip(bound(-1.0))
-            .map(|(lo, hi)| 0.5 * (hi - lo).abs());
+            .map(|(lo, hi)| (0.5 * (hi - lo)).hypot(bracket));
         let dof = match sweep.observable {
             Observable::ConfigurationalTemperature => self.scene.runs as usize - 1,
             Observable::Viscosity => self.scene.runs as usize * (VISCOSITY_BLOCKS - 1),
