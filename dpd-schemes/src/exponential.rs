@@ -17,7 +17,11 @@ use dpd_core::{Scheme, System};
 ///
 /// Forces, dissipative couplings and rates are evaluated at the start of the step. The source
 /// leaves the position update implicit; the drift with the new velocity makes the
-/// deterministic part (`gamma = 0`, where `c = 0`) the symplectic Euler method. Source: N. Phan-Thien, N. Mai-Duy, D. Pan and B. C. Khoo, "Exponential-time
+/// deterministic part (`gamma = 0`, where `c = 0`) the symplectic Euler method; of the
+/// alternatives tried against the source's tables at `m = 0.01` (old velocity, mean of old and
+/// new, exact integral of the frozen equation; docs/papers.md, 002) none matches them better
+/// across the steps.
+/// Source: N. Phan-Thien, N. Mai-Duy, D. Pan and B. C. Khoo, "Exponential-time
 /// differencing schemes for low-mass DPD systems", Comput. Phys. Commun. 185, 229 (2014),
 /// who recommend `c dt < 1`.
 #[derive(Clone, Copy, Debug, Default)]
