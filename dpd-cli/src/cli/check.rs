@@ -27,31 +27,32 @@ pub fn main(args: Args) -> ExitCode {
         return print_json(&c);
     }
     let yes = |b: bool| if b { "yes" } else { "no" };
-    println!("{} = {}", c.scheme, c.program);
+    outln!("{} = {}", c.scheme, c.program);
     if let Some(point) = &c.parameters {
         let at: Vec<String> = point.iter().map(|(n, v)| format!("{n} = {v}")).collect();
-        println!("analysed at {}", at.join(", "));
+        outln!("analysed at {}", at.join(", "));
     }
     match &c.analysis {
         Some(a) => {
-            print!("{a}");
-            println!(
+            out!("{a}");
+            outln!(
                 "note: the deterministic order is that of the pure Hamiltonian splitting, a lower \
                  bound for DPD: with quadratic kinetic energy [B,[B,[B,A]]] = 0, so some schemes \
                  (RKN methods) are an order higher"
             );
         }
-        None => println!(
+        None => outln!(
             "hand-written, documented claims: consistent: {}, deterministic order: {}, \
              invariant-measure order: not applicable (measure it)",
             yes(c.consistent),
             c.deterministic_order
         ),
     }
-    println!("symmetric: {}", yes(c.symmetric));
-    println!(
+    outln!("symmetric: {}", yes(c.symmetric));
+    outln!(
         "evaluations per step: {} force, {} pair-distance",
-        c.force_evaluations_per_step, c.pair_distance_evaluations_per_step
+        c.force_evaluations_per_step,
+        c.pair_distance_evaluations_per_step
     );
     ExitCode::SUCCESS
 }

@@ -79,16 +79,16 @@ pub fn main(args: Args) -> ExitCode {
     }
     if !args.json {
         let inv = |p: Option<u32>| p.map_or("-".to_string(), |p| p.to_string());
-        println!(
+        outln!(
             "family: {}\ngeneric orders: deterministic {}, invariant measure {}; minimising the {:?} norm",
             d.family,
             d.generic_orders.0,
             inv(d.generic_orders.1),
             d.objective
         );
-        println!("solutions (highest orders, best first):");
+        outln!("solutions (highest orders, best first):");
         print_members(&d.solutions);
-        println!("notable points:");
+        outln!("notable points:");
         print_members(&d.notable);
     }
     if args.measure {
@@ -105,7 +105,7 @@ fn print_members(members: &[Member]) {
             .iter()
             .map(|(n, v)| format!("{n} = {v:.10}"))
             .collect();
-        println!(
+        outln!(
             "  {}: det {} (norm {}), inv {} (norm {}), freedom {}, {} force / {} pair-distance evaluations",
             point.join(", "),
             m.deterministic_order,
@@ -117,7 +117,7 @@ fn print_members(members: &[Member]) {
             m.pair_distance_evaluations_per_step
         );
         if let Some(limit) = &m.limit {
-            println!("    (the infimum as {limit}, where the scheme cannot be built; this point is next to it)");
+            outln!("    (the infimum as {limit}, where the scheme cannot be built; this point is next to it)");
         }
     }
 }
@@ -226,12 +226,12 @@ fn measure(d: &Design, args: &Args) -> ExitCode {
         value["sweep"] = json!(json_path.display().to_string());
         let code = print_json(&value);
         if let Err(e) = written {
-            eprintln!("dpd: error: {e}");
+            errln!("dpd: error: {e}");
             return ExitCode::FAILURE;
         }
         return code;
     }
-    println!(
+    outln!(
         "measured on the scene ({} norm predicts: smaller is better; efficiency relative to {REFERENCE}, T_C or the scene's observable):",
         match d.objective {
             Objective::Deterministic => "deterministic",
@@ -243,12 +243,17 @@ fn measure(d: &Design, args: &Args) -> ExitCode {
             .map_or("-".to_string(), |x| format!("{x:.digits$}"))
     };
     let rank = |v: &Value| v.as_u64().map_or("-".to_string(), |x| x.to_string());
-    println!(
+    outln!(
         "  {:>9} {:>9} {:>10} {:>10} {:>10} {:>8}  scheme",
-        "norm", "predicted", "dt_c 10 %", "dt_c 1 %", "efficiency", "measured"
+        "norm",
+        "predicted",
+        "dt_c 10 %",
+        "dt_c 1 %",
+        "efficiency",
+        "measured"
     );
     for r in &rows {
-        println!(
+        outln!(
             "  {:>9} {:>9} {:>10} {:>10} {:>10} {:>8}  {}",
             num(&r["error_norm"], 6),
             rank(&r["predicted_rank"]),

@@ -52,19 +52,19 @@ pub fn main(args: Args) -> ExitCode {
         return bad_input(format!("cannot write --out {}: {e}", args.out.display()));
     }
     for s in &schemes {
-        println!("{} (fix dpd/split {}) = {}", s.name, s.ident, s.program);
+        outln!("{} (fix dpd/split {}) = {}", s.name, s.ident, s.program);
     }
     if !args.build {
-        println!("wrote {}", args.out.display());
+        outln!("wrote {}", args.out.display());
         return ExitCode::SUCCESS;
     }
     match build(&args.out, &args.python) {
         Ok(so) => {
-            println!("{}", so.display());
+            outln!("{}", so.display());
             ExitCode::SUCCESS
         }
         Err(e) => {
-            eprintln!("dpd: error: {e}");
+            errln!("dpd: error: {e}");
             ExitCode::FAILURE
         }
     }

@@ -53,10 +53,10 @@ pub fn main(args: Args) -> ExitCode {
     let name = shown(&args.scheme);
     let steps = ((spec.protocol_time / scene.dt).round() as u64).max(1);
     match scheme.program() {
-        Some(p) => eprintln!("# dpd: KL estimate of {name} = {p}"),
-        None => eprintln!("# dpd: KL estimate of {name}"),
+        Some(p) => errln!("# dpd: KL estimate of {name} = {p}"),
+        None => errln!("# dpd: KL estimate of {name}"),
     }
-    eprintln!(
+    errln!(
         "# dt = {}, {} samples of 2 x {steps} steps, {} Monte Carlo sweeps between samples\n\
          # N = {}, density = {}, a = {}, gamma = {}, kbt = {}, mass = {}, weight_exponent = {}, \
          seed = {}",
@@ -85,11 +85,11 @@ pub fn main(args: Args) -> ExitCode {
     let r = match result {
         Ok(r) => r,
         Err(KlError::Interrupted) => {
-            eprintln!("dpd: interrupted, no estimate");
+            errln!("dpd: interrupted, no estimate");
             return ExitCode::from(INTERRUPTED);
         }
         Err(KlError::BlowUp(b)) => {
-            eprintln!("dpd: the scheme blew up in a protocol, so it has no stationary distribution at dt = {}: {b}", scene.dt);
+            errln!("dpd: the scheme blew up in a protocol, so it has no stationary distribution at dt = {}: {b}", scene.dt);
             return ExitCode::FAILURE;
         }
         Err(e) => return bad_input(e),
@@ -97,22 +97,33 @@ pub fn main(args: Args) -> ExitCode {
     if args.json {
         return print_json(&r);
     }
-    println!(
+    outln!(
         "KL divergence of the configurations: {:.4e} +- {:.1e} ({:.3e} per particle, N = {})",
-        r.kl_divergence, r.kl_error, r.kl_per_particle, r.particles
+        r.kl_divergence,
+        r.kl_error,
+        r.kl_per_particle,
+        r.particles
     );
-    println!(
+    outln!(
         "shadow work in k_B T: <W_F> = {:.4e} +- {:.1e}, <W_R> = {:.4e} +- {:.1e}",
-        r.forward_work.mean, r.forward_work.error, r.reverse_work.mean, r.reverse_work.error
+        r.forward_work.mean,
+        r.forward_work.error,
+        r.reverse_work.mean,
+        r.reverse_work.error
     );
-    println!(
+    outln!(
         "equilibrium samples: U / N = {:.5} +- {:.1e}",
-        r.equilibrium_potential_energy.mean, r.equilibrium_potential_energy.error
+        r.equilibrium_potential_energy.mean,
+        r.equilibrium_potential_energy.error
     );
-    println!(
+    outln!(
         "{} samples x 2 x {} steps; Monte Carlo acceptance {:.2}; seconds (all threads): \
          Monte Carlo {:.1}, protocols {:.1}",
-        r.samples, r.protocol_steps, r.acceptance, r.sampling_seconds, r.protocol_seconds
+        r.samples,
+        r.protocol_steps,
+        r.acceptance,
+        r.sampling_seconds,
+        r.protocol_seconds
     );
     ExitCode::SUCCESS
 }

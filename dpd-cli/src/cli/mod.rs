@@ -1,5 +1,8 @@
 //! Subcommands of the `dpd` program, one module each.
 
+#[macro_use]
+mod output;
+
 mod check;
 mod design;
 mod export;
@@ -52,7 +55,7 @@ enum Command {
 
 /// Run the parsed command line; the exit code is non-zero for bad input.
 pub fn main(cli: Cli) -> ExitCode {
-    match cli.command {
+    output::finish(match cli.command {
         None => sweep::main_job(),
         Some(Command::Run(args)) => run::main(args),
         Some(Command::Sweep(args)) => sweep::main(args),
@@ -64,7 +67,7 @@ pub fn main(cli: Cli) -> ExitCode {
         Some(Command::Stability(args)) => stability::main(args),
         Some(Command::Reproduce(args)) => reproduce::main(args),
         Some(Command::Export(args)) => export::main(args),
-    }
+    })
 }
 
 /// Exit code of invalid input (the same as clap's usage errors).
@@ -74,7 +77,7 @@ const INTERRUPTED: u8 = 130;
 
 /// Print `message` as an error of the program and return the bad-input exit code.
 fn bad_input(message: impl std::fmt::Display) -> ExitCode {
-    eprintln!("dpd: error: {message}");
+    errln!("dpd: error: {message}");
     ExitCode::from(BAD_INPUT)
 }
 
@@ -82,11 +85,11 @@ fn bad_input(message: impl std::fmt::Display) -> ExitCode {
 fn print_json(value: &impl serde::Serialize) -> ExitCode {
     match serde_json::to_string_pretty(value) {
         Ok(text) => {
-            println!("{text}");
+            outln!("{text}");
             ExitCode::SUCCESS
         }
         Err(e) => {
-            eprintln!("dpd: error: cannot write JSON: {e}");
+            errln!("dpd: error: cannot write JSON: {e}");
             ExitCode::FAILURE
         }
     }

@@ -79,7 +79,7 @@ pub fn main(args: Args) -> ExitCode {
     if args.json {
         return print_json(&list);
     }
-    println!(
+    outln!(
         "{:<width$}  det  inv  force  pairs  sym  program",
         "scheme",
         width = args.max_len.max(6) as usize
@@ -95,7 +95,7 @@ pub fn main(args: Args) -> ExitCode {
                 }
             )
         });
-        println!(
+        outln!(
             "{:<width$}  {:>3}  {:>3}  {:>5}  {:>5}  {:>3}  {}",
             o.scheme,
             o.deterministic_order,
@@ -107,7 +107,7 @@ pub fn main(args: Args) -> ExitCode {
             width = args.max_len.max(6) as usize
         );
     }
-    println!("{} distinct consistent orderings", list.len());
+    outln!("{} distinct consistent orderings", list.len());
     ExitCode::SUCCESS
 }
 

@@ -15,13 +15,18 @@ pub fn stop_flag() -> &'static AtomicBool {
             if STOP.swap(true, Ordering::SeqCst) {
                 std::process::exit(super::INTERRUPTED.into());
             }
-            eprintln!("\ndpd: stopping, finished results are kept (Ctrl-C again to abort)");
+            errln!("\ndpd: stopping, finished results are kept (Ctrl-C again to abort)");
         });
         if let Err(e) = installed {
-            eprintln!("dpd: warning: Ctrl-C will not stop cleanly: {e}");
+            errln!("dpd: warning: Ctrl-C will not stop cleanly: {e}");
         }
     });
     &STOP
+}
+
+/// Ask the runs to stop as the first Ctrl-C does (the reader of stdout went away).
+pub fn stop() {
+    STOP.store(true, Ordering::SeqCst);
 }
 
 /// A bar over `total` steps on stderr (drawn only on a terminal).

@@ -51,7 +51,7 @@ pub fn main(args: Args) -> ExitCode {
     if args.list {
         for item in &items {
             let what = if item.runs() { "" } else { " [not run]" };
-            println!("{:<16} {}{what}: {}", item.id, item.citation, item.title);
+            outln!("{:<16} {}{what}: {}", item.id, item.citation, item.title);
         }
         return ExitCode::SUCCESS;
     }
@@ -76,13 +76,13 @@ pub fn main(args: Args) -> ExitCode {
     let mut tally: HashMap<&str, usize> = HashMap::new();
     let start = Instant::now();
     for item in &chosen {
-        println!("== {} ({:?}): {}", item.id, item.kind, item.title);
-        println!("   {}, {}", item.reference, item.citation);
+        outln!("== {} ({:?}): {}", item.id, item.kind, item.title);
+        outln!("   {}, {}", item.reference, item.citation);
         if !item.notes.is_empty() {
-            println!("   {}", item.notes.trim().replace('\n', "\n   "));
+            outln!("   {}", item.notes.trim().replace('\n', "\n   "));
         }
         if !item.runs() {
-            println!("   not a simulation: nothing to run\n");
+            outln!("   not a simulation: nothing to run\n");
             continue;
         }
         let needed: Vec<&Item> = std::iter::once(*item)
@@ -111,7 +111,7 @@ pub fn main(args: Args) -> ExitCode {
             *tally.entry(verdict_name(&c.verdict)).or_default() += 1;
         }
         if !comparisons.is_empty() {
-            print!("{}", table(&comparisons));
+            out!("{}", table(&comparisons));
         }
         let figures = match (&item.plot, item.kind) {
             (Some(spec), Kind::Figure) => {
@@ -128,7 +128,7 @@ pub fn main(args: Args) -> ExitCode {
                 match draw(spec, &panels, &dir) {
                     Ok(files) => files.iter().map(|f| f.display().to_string()).collect(),
                     Err(e) => {
-                        eprintln!("dpd: error: {}: cannot draw: {e}", item.id);
+                        errln!("dpd: error: {}: cannot draw: {e}", item.id);
                         return ExitCode::FAILURE;
                     }
                 }
@@ -136,10 +136,10 @@ pub fn main(args: Args) -> ExitCode {
             _ => Vec::new(),
         };
         if !figures.is_empty() {
-            println!("   drew {}", figures.join(", "));
+            outln!("   drew {}", figures.join(", "));
         }
         let wall = own.map_or(0.0, |(_, s)| *s);
-        println!("   wall time of its runs: {wall:.1} s\n");
+        outln!("   wall time of its runs: {wall:.1} s\n");
         let report = Report {
             id: &item.id,
             quick: args.quick,
@@ -152,18 +152,18 @@ pub fn main(args: Args) -> ExitCode {
             .join(format!("{}{}.json", item.id, suffix(args.quick)));
         let text = serde_json::to_string_pretty(&report).unwrap_or_default();
         if let Err(e) = std::fs::write(&path, text) {
-            eprintln!("dpd: error: cannot write {}: {e}", path.display());
+            errln!("dpd: error: cannot write {}: {e}", path.display());
             return ExitCode::FAILURE;
         }
         if progress::stop_flag().load(Ordering::Relaxed) {
-            println!("interrupted: run the same command again to resume");
+            outln!("interrupted: run the same command again to resume");
             return ExitCode::from(INTERRUPTED);
         }
     }
     let mut counts: Vec<_> = tally.into_iter().collect();
     counts.sort();
     let counts: Vec<String> = counts.iter().map(|(k, n)| format!("{n} {k}")).collect();
-    println!(
+    outln!(
         "{} items in {:.1} s; numbers: {}",
         chosen.len(),
         start.elapsed().as_secs_f64(),

@@ -66,7 +66,7 @@ pub fn main(args: Args) -> ExitCode {
         Some(p) => format!("scheme {name} = {p}"),
         None => format!("scheme {name}"),
     };
-    eprint!("{}", header(&scene, &what, &[scene.dt]));
+    err!("{}", header(&scene, &what, &[scene.dt]));
     let jobs: Vec<Job> = (0..scene.runs)
         .map(|k| Job {
             scheme: scene.scheme.clone(),
@@ -104,7 +104,7 @@ pub fn main(args: Args) -> ExitCode {
     };
     if let Some(dir) = &args.profile_dir {
         if let Err(e) = write_profiles(&results, scene.profile.as_ref(), dir) {
-            eprintln!("error: writing profiles to {}: {e}", dir.display());
+            errln!("error: writing profiles to {}: {e}", dir.display());
             return ExitCode::FAILURE;
         }
     }
@@ -164,32 +164,32 @@ fn print_table(r: &RunReport) {
             ..r.combined.clone()
         });
     }
-    print!("{}", report::rows_table(&rows));
+    out!("{}", report::rows_table(&rows));
     let c = &r.combined;
     if let Some(f) = c.force_evaluations_per_step {
-        println!("force evaluations per step: {f:.3}");
+        outln!("force evaluations per step: {f:.3}");
     }
     if let Some(d) = c.diffusion {
-        println!("diffusion coefficient: {d:.5}");
+        outln!("diffusion coefficient: {d:.5}");
     }
     if let (Some(q), Some(w)) = (c.heat, c.shadow_work) {
-        println!("per particle and time unit, in k_B T: heat {q:.4e}, shadow work {w:.4e}");
+        outln!("per particle and time unit, in k_B T: heat {q:.4e}, shadow work {w:.4e}");
     }
     if let Some(v) = c.viscosity {
         match v.shear_viscosity.zip(v.shear_viscosity_error) {
-            Some((eta, e)) => println!("shear viscosity: {eta:.4} +- {e:.4}"),
-            None => println!("shear viscosity: too few samples"),
+            Some((eta, e)) => outln!("shear viscosity: {eta:.4} +- {e:.4}"),
+            None => outln!("shear viscosity: too few samples"),
         }
     }
     for run in r.results.iter().filter(|run| !run.stable) {
-        println!(
+        outln!(
             "seed {}: {}",
             run.seed,
             run.error.as_deref().unwrap_or("unstable")
         );
     }
     if r.interrupted {
-        println!("interrupted: the averages cover the samples taken before Ctrl-C");
+        outln!("interrupted: the averages cover the samples taken before Ctrl-C");
     }
 }
 
@@ -209,7 +209,7 @@ fn write_profiles(
             let csv = std::fs::File::create(stem.with_extension("csv"))?;
             dpd::observe::write_profile_csv(spec.axis, rows, std::io::BufWriter::new(csv))?;
             profile_plot(rows, spec.axis, &stem.with_extension("svg"))?;
-            eprintln!("wrote {}.csv and .svg", stem.display());
+            errln!("wrote {}.csv and .svg", stem.display());
         }
     }
     Ok(())

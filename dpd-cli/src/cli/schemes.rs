@@ -16,9 +16,14 @@ pub fn main(args: Args) -> ExitCode {
     if args.json {
         return print_json(&rows);
     }
-    println!(
+    outln!(
         "{:<14} {:>5} {:>5} {:>4} {:>4} {:>4}  sequence",
-        "name", "force", "pairs", "det", "inv", "sym"
+        "name",
+        "force",
+        "pairs",
+        "det",
+        "inv",
+        "sym"
     );
     for r in &rows {
         let invariant = r
@@ -31,7 +36,7 @@ pub fn main(args: Args) -> ExitCode {
         if r.hand_written {
             sequence.push_str("   [hand-written]");
         }
-        println!(
+        outln!(
             "{:<14} {:>5} {:>5} {:>4} {:>4} {:>4}  {sequence}",
             r.name,
             r.force_evaluations_per_step,
@@ -41,11 +46,9 @@ pub fn main(args: Args) -> ExitCode {
             if r.symmetric { "yes" } else { "no" },
         );
     }
-    println!();
-    println!(
-        "force, pairs: force and pair-distance evaluations per step; det: deterministic order"
-    );
-    println!("of the Hamiltonian part; inv: invariant-measure order bound (- where the criterion");
-    println!("does not apply: F stages, hand-written schemes). Aliases and sources: --json.");
+    outln!();
+    outln!("force, pairs: force and pair-distance evaluations per step; det: deterministic order");
+    outln!("of the Hamiltonian part; inv: invariant-measure order bound (- where the criterion");
+    outln!("does not apply: F stages, hand-written schemes). Aliases and sources: --json.");
     ExitCode::SUCCESS
 }

@@ -88,7 +88,7 @@ pub fn main(args: Args) -> ExitCode {
 /// One block per scheme: a row per (gamma, mass), a column per dt. A cell is
 /// `T_K error / T_C error` in per cent, `blow-up@step`, or `insane`.
 fn print_tables(matrix: &Matrix, schemes: &[&Entry], records: &[Record]) {
-    println!(
+    outln!(
         "{} steps, N = {}, density {}; cells: T_K/T_C error in %, blow-up@step, or insane \
          (a mean temperature off by more than a factor {})",
         matrix.steps,
@@ -99,15 +99,15 @@ fn print_tables(matrix: &Matrix, schemes: &[&Entry], records: &[Record]) {
     let cases = matrix.cases().len();
     let mut totals = Vec::new();
     for (entry, block) in schemes.iter().zip(records.chunks(cases)) {
-        println!("\n{}", entry.name);
-        print!("  {:>8} {:>8} |", "gamma", "mass");
+        outln!("\n{}", entry.name);
+        out!("  {:>8} {:>8} |", "gamma", "mass");
         for dt in &matrix.dts {
-            print!(" {:>15}", format!("dt={dt}"));
+            out!(" {:>15}", format!("dt={dt}"));
         }
-        println!();
+        outln!();
         let (mut completed, mut blow_ups, mut insane) = (0, 0, 0);
         for row in block.chunks(matrix.dts.len()) {
-            print!("  {:>8} {:>8} |", row[0].gamma, row[0].mass);
+            out!("  {:>8} {:>8} |", row[0].gamma, row[0].mass);
             for r in row {
                 let cell = match &r.outcome {
                     Outcome::Completed {
@@ -131,17 +131,20 @@ fn print_tables(matrix: &Matrix, schemes: &[&Entry], records: &[Record]) {
                         "insane".to_string()
                     }
                 };
-                print!(" {cell:>15}");
+                out!(" {cell:>15}");
             }
-            println!();
+            outln!();
         }
         totals.push((entry.name, completed, blow_ups, insane));
     }
-    println!(
+    outln!(
         "\n{:<14} {:>9} {:>8} {:>7}",
-        "scheme", "completed", "blow-up", "insane"
+        "scheme",
+        "completed",
+        "blow-up",
+        "insane"
     );
     for (name, completed, blow_ups, insane) in totals {
-        println!("{name:<14} {completed:>9} {blow_ups:>8} {insane:>7}");
+        outln!("{name:<14} {completed:>9} {blow_ups:>8} {insane:>7}");
     }
 }

@@ -48,7 +48,7 @@ pub fn main_job() -> ExitCode {
         Ok(scene) => scene,
         Err(e) => return bad_input(e),
     };
-    eprintln!("dpd: the main job (scenes/main.toml); `dpd --help` lists the commands");
+    errln!("dpd: the main job (scenes/main.toml); `dpd --help` lists the commands");
     let out = Path::new("results");
     execute(&scene, &out.join("main.json"), out, false)
 }
@@ -59,13 +59,13 @@ fn execute(scene: &Scene, json: &Path, out: &Path, fresh: bool) -> ExitCode {
         Err(code) => return code,
     };
     let w = sweep::spec(scene);
-    print!("{}", report::rows_table(&results.rows));
-    println!();
-    println!(
+    out!("{}", report::rows_table(&results.rows));
+    outln!();
+    outln!(
         "critical dt: where the relative error of the {} first reaches 10 % / 1 %",
         w.observable.name().replace('-', " ")
     );
-    print!("{}", report::summary_table(&results.summary, &w.reference));
+    out!("{}", report::summary_table(&results.summary, &w.reference));
     finish(&results, written, scene)
 }
 
@@ -87,7 +87,7 @@ pub fn measure(
         .copied()
         .collect();
     let what = format!("sweep of {}", w.schemes.join(", "));
-    eprint!("{}", header(scene, &what, &ends));
+    err!("{}", header(scene, &what, &ends));
     let finished = if fresh {
         Vec::new()
     } else {
@@ -95,7 +95,7 @@ pub fn measure(
     };
     let pending = sweep::pending(scene, &finished);
     let planned = pending.len() + finished.len();
-    eprintln!(
+    errln!(
         "# {} dt from {} to {}; {} points, {} already in {}",
         grid.len(),
         w.dt_min,
@@ -138,14 +138,14 @@ pub fn finish(
     scene: &Scene,
 ) -> ExitCode {
     match written {
-        Ok(files) => println!("wrote {}", files.join(", ")),
+        Ok(files) => outln!("wrote {}", files.join(", ")),
         Err(e) => {
-            eprintln!("dpd: error: {e}");
+            errln!("dpd: error: {e}");
             return ExitCode::FAILURE;
         }
     }
     if progress::stop_flag().load(Ordering::Relaxed) && !results.complete {
-        println!(
+        outln!(
             "interrupted: {} of {} points done; run the same command again to resume",
             results.points.len(),
             sweep::plan(scene).len()
