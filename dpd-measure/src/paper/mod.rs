@@ -393,7 +393,7 @@ mod tests {
 mod shipped {
     use super::*;
 
-    /// Every table and figure of the four papers in ../shared/seeds (counted in their texts:
+    /// Every table and figure of the four papers of docs/papers.md (counted in their texts:
     /// 000 Tables 1-4, Figures 1-5; 001 Tables 1-2, Figures 1-6; 002 Tables 1-4, Figures 1-6;
     /// 003 Tables 1-6, Figures 1-5) is an item, and every item loads and is valid.
     #[test]
