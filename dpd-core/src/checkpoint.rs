@@ -17,8 +17,7 @@
 use crate::boundary::{LeesEdwards, PeriodicBox};
 use crate::error::CheckpointError;
 use crate::params::Params;
-use crate::stamp::Stamp;
-use crate::system::System;
+use crate::system::{Continuation, System};
 use crate::walls::Walls;
 use crate::Vec3;
 use serde::{Deserialize, Serialize};
@@ -79,32 +78,30 @@ impl System {
             path: path.display().to_string(),
             source,
         };
+        let c = self.continuation();
         let payload = Payload {
             scheme: scheme.to_string(),
-            params: self.params.clone(),
-            bx: self.bx,
-            dt: self.dt,
-            seed: self.seed,
-            step: self.step,
-            skin: self.list.skin(),
-            q: self.q.clone(),
-            p: self.p.clone(),
-            mass: self.mass.clone(),
-            kind: self.kind.clone(),
-            id: self.id.clone(),
-            full_forces: self
-                .full_at
-                .is_fresh(self.positions)
-                .then(|| self.full.clone()),
-            list_reference: self.list.reference().to_vec(),
-            shear: shear_state(self.shear.as_ref()),
-            list_shear: shear_state(self.list.reference_shear()),
-            travel: self.travel,
-            walls: self.walls.as_ref().map(|w| {
-                let [v0, v1] = w.walls.velocity();
-                ([w.walls.lower(), w.walls.upper(), v0, v1], w.frozen.clone())
+            params: self.params().clone(),
+            bx: *self.boundary(),
+            dt: self.dt(),
+            seed: self.seed(),
+            step: c.step,
+            skin: self.skin(),
+            q: self.positions().to_vec(),
+            p: self.momenta().to_vec(),
+            mass: self.masses().to_vec(),
+            kind: self.kinds().to_vec(),
+            id: self.ids().to_vec(),
+            full_forces: c.full_forces,
+            list_reference: c.list_reference,
+            shear: shear_state(c.shear.as_ref()),
+            list_shear: shear_state(c.list_shear.as_ref()),
+            travel: c.travel,
+            walls: self.walls().zip(self.frozen()).map(|(w, frozen)| {
+                let [v0, v1] = w.velocity();
+                ([w.lower(), w.upper(), v0, v1], frozen.to_vec())
             }),
-            body_force: self.body_force,
+            body_force: self.body_force(),
         };
         let data = bincode::serialize(&payload).map_err(|e| CheckpointError::Decode {
             path: path.display().to_string(),
@@ -195,44 +192,15 @@ impl System {
             builder = builder.body_force(g);
         }
         let mut sys = builder.build().map_err(invalid)?;
-        // The saved positions are inside the box, so the builder moved no particle across the
-        // sliding boundary; the saved offset is restored as it was.
-        sys.shear = shear;
-        sys.step = payload.step;
-        sys.travel = payload.travel;
-        if !payload.list_reference.is_empty() {
-            if payload.list_reference.len() != sys.len() {
-                return Err(invalid(crate::ParamError::new(
-                    "list_reference",
-                    format!("{} entries", payload.list_reference.len()),
-                    format!("must have {} entries", sys.len()),
-                )));
-            }
-            // The reference positions were stored in cell order, so binning them again gives
-            // the identity order and the particles stay where the checkpoint put them.
-            let rc = sys.params.rc();
-            let reference = &payload.list_reference;
-            let order = sys.list.bin(reference, &sys.bx, rc);
-            if order.iter().enumerate().any(|(k, &i)| i as usize != k) {
-                return Err(invalid(crate::ParamError::new(
-                    "list_reference",
-                    "positions not in the cell order of the neighbour grid",
-                    "the positions of the last list build, in storage order, as written by save_checkpoint",
-                )));
-            }
-            sys.list.build(reference, &sys.bx, list_shear.as_ref(), rc);
-        }
-        if let Some(full) = payload.full_forces {
-            if full.len() != sys.len() {
-                return Err(invalid(crate::ParamError::new(
-                    "full_forces",
-                    format!("{} entries", full.len()),
-                    format!("must have {} entries", sys.len()),
-                )));
-            }
-            sys.full = full;
-            sys.full_at = Stamp::at(sys.positions);
-        }
+        sys.resume(Continuation {
+            step: payload.step,
+            shear,
+            travel: payload.travel,
+            list_reference: payload.list_reference,
+            list_shear,
+            full_forces: payload.full_forces,
+        })
+        .map_err(invalid)?;
         Ok((sys, payload.scheme))
     }
 }

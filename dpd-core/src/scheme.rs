@@ -68,7 +68,7 @@ impl System {
 /// with the same `f64` constants, so both paths give bitwise identical trajectories.
 #[inline(always)]
 pub fn apply_stage(sys: &mut System, stage: &Stage) {
-    let h = stage.coeff.value * sys.dt;
+    let h = stage.coeff.value * sys.dt();
     match stage.flow {
         Flow::A => drift(sys, h),
         Flow::B => kick(sys, h),

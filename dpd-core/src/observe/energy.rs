@@ -43,13 +43,13 @@ impl EnergyBalance {
     pub fn start(sys: &mut System, scheme: &dyn Scheme) -> Result<Self, ParamError> {
         balance_defined(sys, scheme)?;
         let start = hamiltonian(sys);
-        sys.heat = Some(0.0);
+        sys.start_heat();
         Ok(EnergyBalance { start })
     }
 
     /// Heat and shadow work since the start (evaluates the potential energy).
     pub fn read(&self, sys: &mut System) -> Balance {
-        let heat = sys.heat.unwrap_or(f64::NAN);
+        let heat = sys.heat().unwrap_or(f64::NAN);
         Balance {
             heat,
             shadow_work: hamiltonian(sys) - self.start - heat,
@@ -59,7 +59,7 @@ impl EnergyBalance {
     /// [`EnergyBalance::read`], then stop recording (the sweeps no longer pay for it).
     pub fn finish(self, sys: &mut System) -> Balance {
         let balance = self.read(sys);
-        sys.heat = None;
+        sys.stop_heat();
         balance
     }
 }
@@ -90,11 +90,11 @@ pub fn balance_defined(sys: &System, scheme: &dyn Scheme) -> Result<(), ParamErr
         };
         return refuse(scheme.name(), why);
     }
-    let scene = if sys.shear.is_some() {
+    let scene = if sys.shear().is_some() {
         Some("shear_rate")
-    } else if sys.walls.is_some() {
+    } else if sys.walls().is_some() {
         Some("walls")
-    } else if sys.body_force.is_some() {
+    } else if sys.body_force().is_some() {
         Some("body_force")
     } else {
         None
@@ -121,8 +121,9 @@ pub fn potential_energy(sys: &mut System) -> f64 {
         pairs
             .iter()
             .map(|pair| {
-                sys.params
-                    .soft(sys.kind[pair.i as usize], sys.kind[pair.j as usize])
+                let kind = sys.kinds();
+                sys.params()
+                    .soft(kind[pair.i as usize], kind[pair.j as usize])
                     .energy(pair.w)
             })
             .sum()
@@ -147,6 +148,16 @@ mod tests {
         sys
     }
 
+    /// A system in the state of `sys` (particles in its storage order) with `params`, built
+    /// anew: set anything else on the builder.
+    fn rebuilt(sys: &System, params: crate::Params) -> crate::SystemBuilder {
+        System::builder(params, *sys.boundary(), sys.positions().to_vec())
+            .momenta(sys.momenta().to_vec())
+            .ids(sys.ids().to_vec())
+            .seed(sys.seed())
+            .dt(sys.dt())
+    }
+
     fn scheme(source: &str) -> DynScheme {
         DynScheme::compile(source, source, &Default::default()).unwrap()
     }
@@ -162,9 +173,8 @@ mod tests {
         let start = system(4.5, 0.02);
         let s = scheme("BAOAB");
         let largest_work = |dt: f64| {
-            let mut sys = start.clone();
-            sys.params = crate::Params::builder().gamma(0.0).build().unwrap();
-            sys.dt = dt;
+            let without_thermostat = crate::Params::builder().gamma(0.0).build().unwrap();
+            let mut sys = rebuilt(&start, without_thermostat).dt(dt).build().unwrap();
             let balance = EnergyBalance::start(&mut sys, &s).unwrap();
             let mut largest: f64 = 0.0;
             for _ in 0..(1.0 / dt).round() as u64 {
@@ -195,7 +205,7 @@ mod tests {
         assert!(b.heat.abs() > 1e-3, "heat {}", b.heat);
         assert!((b.heat - (sys.kinetic_energy() - before)).abs() < 1e-9);
         assert!(b.shadow_work.abs() < 1e-9, "{}", b.shadow_work);
-        assert_eq!(sys.heat, None);
+        assert_eq!(sys.heat(), None);
     }
 
     #[test]
@@ -206,9 +216,12 @@ mod tests {
             assert_eq!(e.field, "scheme");
             assert!(e.to_string().contains("valid stages: A, B, O, Ob"), "{e}");
         }
-        sys.body_force = Some(crate::Vec3::new(0.1, 0.0, 0.0));
+        let mut sys = rebuilt(&sys, sys.params().clone())
+            .body_force(crate::Vec3::new(0.1, 0.0, 0.0))
+            .build()
+            .unwrap();
         let e = EnergyBalance::start(&mut sys, &scheme("ABOBA")).unwrap_err();
         assert_eq!(e.field, "body_force");
-        assert_eq!(sys.heat, None);
+        assert_eq!(sys.heat(), None);
     }
 }

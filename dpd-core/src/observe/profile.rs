@@ -107,7 +107,7 @@ impl Profile {
             .positions()
             .iter()
             .zip(sys.momenta())
-            .zip(sys.masses().iter().zip(&sys.inv_mass))
+            .zip(sys.masses().iter().zip(sys.inverse_masses()))
         {
             if im == 0.0 {
                 continue;

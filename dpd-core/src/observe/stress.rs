@@ -18,7 +18,7 @@
 
 use super::average::block_mean;
 use crate::error::ParamError;
-use crate::system::{ImpulseVirial, System};
+use crate::system::System;
 use crate::{Tensor, Vec3};
 use serde::Serialize;
 
@@ -48,13 +48,12 @@ impl Stress {
 /// half-kick after the first call). Recording costs a tensor update per pair in every sweep;
 /// [`stop_recording`] ends it.
 pub fn stress(sys: &mut System) -> Option<Stress> {
-    let step = sys.step;
-    let recorded = sys.impulses.replace(ImpulseVirial::new(step))?;
-    let elapsed = (step - recorded.since) as f64 * sys.dt;
+    let recorded = sys.restart_impulses()?;
+    let elapsed = (sys.step() - recorded.since) as f64 * sys.dt();
     if !recorded.complete || elapsed <= 0.0 {
         return None;
     }
-    let scale = -1.0 / sys.bx.volume();
+    let scale = -1.0 / sys.boundary().volume();
     Some(Stress {
         kinetic: scale * kinetic_tensor(sys),
         conservative: scale * conservative_virial(sys),
@@ -75,14 +74,15 @@ pub fn state_dissipative_stress(sys: &mut System) -> Tensor {
     // The pairs first: a list build re-sorts the particles.
     sys.ensure_pairs();
     let v: Vec<Vec3> = sys
-        .p
+        .momenta()
         .iter()
-        .zip(&sys.inv_mass)
+        .zip(sys.inverse_masses())
         .map(|(p, im)| p * *im)
         .collect();
-    let shifts = sys.pairs.shifts();
+    let pairs = sys.pairs();
+    let shifts = pairs.shifts();
     let mut sum = Tensor::zeros();
-    for (k, pair) in sys.pairs.iter().enumerate() {
+    for (k, pair) in pairs.iter().enumerate() {
         let dvx = shifts.map_or(0.0, |s| s[k]);
         let u = pair.e.dot(&(v[pair.i as usize] - v[pair.j as usize])) + pair.e.x * dvx;
         sum += (gamma * pair.wr * pair.wr * pair.r(rc) * u) * pair.e * pair.e.transpose();
@@ -92,8 +92,7 @@ pub fn state_dissipative_stress(sys: &mut System) -> Tensor {
 
 /// Stop recording pair impulses (the sweeps no longer pay for it).
 pub fn stop_recording(sys: &mut System) {
-    sys.impulses = None;
-    sys.full_virial = None;
+    sys.stop_impulses();
 }
 
 /// `sum_i m_i (v_i - u_i) (x) (v_i - u_i)` with the streaming velocity `u_i` of the shear.
@@ -101,7 +100,7 @@ fn kinetic_tensor(sys: &System) -> Tensor {
     let peculiar = sys.peculiar_velocities();
     peculiar
         .iter()
-        .zip(&sys.mass)
+        .zip(sys.masses())
         .map(|(v, &m)| m * v * v.transpose())
         .sum()
 }
@@ -113,9 +112,10 @@ fn conservative_virial(sys: &mut System) -> Tensor {
         pairs
             .iter()
             .map(|pair| {
+                let kind = sys.kinds();
                 let soft = sys
-                    .params
-                    .soft(sys.kind[pair.i as usize], sys.kind[pair.j as usize]);
+                    .params()
+                    .soft(kind[pair.i as usize], kind[pair.j as usize]);
                 soft.virial(pair.w) * pair.e * pair.e.transpose()
             })
             .sum()
@@ -126,12 +126,19 @@ impl System {
     /// Velocities relative to the streaming profile `u_x(y) = rate (y - L_y/2)` of the shear
     /// (the plain velocities without shear).
     pub fn peculiar_velocities(&self) -> Vec<Vec3> {
-        let velocity = self.p.iter().zip(&self.inv_mass).map(|(p, im)| p * *im);
-        match &self.shear {
+        let velocity = self
+            .momenta()
+            .iter()
+            .zip(self.inverse_masses())
+            .map(|(p, im)| p * *im);
+        match self.shear() {
             None => velocity.collect(),
             Some(le) => velocity
-                .zip(&self.q)
-                .map(|(v, q)| v - Vec3::new(le.streaming_velocity(&self.bx, q.y), 0.0, 0.0))
+                .zip(self.positions())
+                .map(|(v, q)| {
+                    let u = le.streaming_velocity(self.boundary(), q.y);
+                    v - Vec3::new(u, 0.0, 0.0)
+                })
                 .collect(),
         }
     }

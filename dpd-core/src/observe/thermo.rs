@@ -28,18 +28,18 @@ impl Thermo {
 /// the streaming profile ([`System::peculiar_velocities`]); with walls, N counts the mobile
 /// particles only (frozen ones have zero velocity as far as this sum goes).
 pub fn kinetic_temperature(sys: &System) -> f64 {
-    let twice_ke: f64 = match sys.shear {
+    let twice_ke: f64 = match sys.shear() {
         None => 2.0 * sys.kinetic_energy(),
         Some(_) => sys
             .peculiar_velocities()
             .iter()
-            .zip(&sys.mass)
+            .zip(sys.masses())
             .map(|(v, m)| m * v.norm_squared())
             .sum(),
     };
-    let mobile = match &sys.walls {
+    let mobile = match sys.frozen() {
         None => sys.len(),
-        Some(w) => w.frozen.iter().filter(|&&f| !f).count(),
+        Some(frozen) => frozen.iter().filter(|&&f| !f).count(),
     };
     twice_ke / (3.0 * (mobile as f64 - 1.0))
 }
@@ -49,10 +49,10 @@ pub fn kinetic_temperature(sys: &System) -> f64 {
 /// The pair potential, its Laplacian and virial are those of [`crate::potential::Soft`].
 pub fn thermo(sys: &mut System) -> Thermo {
     let n = sys.len() as f64;
-    let volume = sys.bx.volume();
+    let volume = sys.boundary().volume();
     let tk = kinetic_temperature(sys);
     let (u, lap, virial, numerator) = sys.with_forces(|sys, pairs, forces| {
-        let (params, kind) = (&sys.params, &sys.kind);
+        let (params, kind) = (sys.params(), sys.kinds());
         let (mut u, mut lap, mut virial) = (0.0, 0.0, 0.0);
         for pair in pairs.iter() {
             let soft = params.soft(kind[pair.i as usize], kind[pair.j as usize]);

@@ -105,6 +105,13 @@ impl System {
             }
         }
     }
+
+    /// The largest drift length the step under way has summed since the neighbour list last
+    /// checked the positions (the bound the guarded step tests).
+    #[cfg(test)]
+    pub(crate) fn drift_bound(&self) -> f64 {
+        self.drift_bound
+    }
 }
 
 /// `to <- from`, on all threads for large systems.

@@ -43,66 +43,68 @@ pub struct Counters {
 /// first half-kick of the next).
 #[derive(Clone, Debug)]
 pub struct System {
-    pub(crate) bx: PeriodicBox,
+    bx: PeriodicBox,
     /// Lees-Edwards boundaries; `None` is the plain periodic box, whose code paths never look
     /// at shear.
-    pub(crate) shear: Option<LeesEdwards>,
+    shear: Option<LeesEdwards>,
     /// Walls across z with their frozen particles; `None`: no walls, and no code path looks
     /// at them.
-    pub(crate) walls: Option<FrozenWalls>,
+    walls: Option<FrozenWalls>,
     /// External force on every mobile particle (Poiseuille flow), added to the conservative
     /// and full forces.
-    pub(crate) body_force: Option<Vec3>,
-    pub(crate) params: Params,
-    pub(crate) q: Vec<Vec3>,
-    pub(crate) p: Vec<Vec3>,
-    pub(crate) mass: Vec<f64>,
-    pub(crate) inv_mass: Vec<f64>,
-    pub(crate) kind: Vec<u16>,
+    body_force: Option<Vec3>,
+    params: Params,
+    q: Vec<Vec3>,
+    p: Vec<Vec3>,
+    mass: Vec<f64>,
+    inv_mass: Vec<f64>,
+    kind: Vec<u16>,
     /// Identity of each stored particle: its index at construction.
-    pub(crate) id: Vec<u32>,
-    pub(crate) dt: f64,
-    pub(crate) seed: u64,
-    pub(crate) step: u64,
-    pub(crate) list: VerletList,
+    id: Vec<u32>,
+    dt: f64,
+    seed: u64,
+    step: u64,
+    list: VerletList,
     /// Generation of the positions, advanced by every change of them (see [`crate::stamp`]).
-    pub(crate) positions: Generation,
-    pub(crate) pairs: PairTable,
-    pub(crate) pairs_at: Stamp,
-    pub(crate) conservative: Vec<Vec3>,
-    pub(crate) conservative_at: Stamp,
-    pub(crate) full: Vec<Vec3>,
-    pub(crate) full_at: Stamp,
+    positions: Generation,
+    pairs: PairTable,
+    pairs_at: Stamp,
+    conservative: Vec<Vec3>,
+    conservative_at: Stamp,
+    full: Vec<Vec3>,
+    full_at: Stamp,
     /// Pair virial of the dissipative and random parts of `full`, when impulses were being
     /// recorded as it was evaluated.
-    pub(crate) full_virial: Option<Tensor>,
+    full_virial: Option<Tensor>,
     /// Pair impulses of the dissipative and random forces being recorded for the stress
     /// (`None`: not recording, and the sweeps do not pay for it).
-    pub(crate) impulses: Option<ImpulseVirial>,
+    impulses: Option<ImpulseVirial>,
     /// Heat taken up from the thermostat since recording started: the sum of the kinetic
     /// energy changes of the O and O-BBK sweeps (`None`: not recording, and the sweeps do not
     /// pay for it; see [`crate::observe::EnergyBalance`]).
-    pub(crate) heat: Option<f64>,
-    pub(crate) counters: Counters,
+    heat: Option<f64>,
+    counters: Counters,
     /// Largest single-particle drift length summed over the drifts since the neighbour list
     /// last checked the positions (length units; NaN once a drift length was NaN).
-    pub(crate) travel: f64,
+    travel: f64,
     /// Largest value `travel` reached during this step: a bound on how far a particle moved
     /// between two checks of the neighbour list.
-    pub(crate) drift_bound: f64,
+    drift_bound: f64,
     /// The undo copy of the guarded step, kept to reuse its allocations.
-    pub(crate) backup: Backup,
+    backup: Backup,
 }
 
 mod builder;
 mod forces;
 mod guard;
-mod impulses;
+mod records;
+mod resume;
 mod views;
 
 pub use builder::SystemBuilder;
 use guard::Backup;
-pub(crate) use impulses::ImpulseVirial;
+pub(crate) use records::ImpulseVirial;
+pub(crate) use resume::Continuation;
 pub(crate) use views::{Motion, PairState};
 
 impl System {
@@ -143,6 +145,10 @@ impl System {
     pub fn masses(&self) -> &[f64] {
         &self.mass
     }
+    /// Inverse masses, 0 for frozen particles.
+    pub(crate) fn inverse_masses(&self) -> &[f64] {
+        &self.inv_mass
+    }
     pub fn kinds(&self) -> &[u16] {
         &self.kind
     }
@@ -165,6 +171,10 @@ impl System {
     }
     pub fn counters(&self) -> Counters {
         self.counters
+    }
+    /// Neighbour skin (length): the list holds the pairs within `r_c + skin`.
+    pub fn skin(&self) -> f64 {
+        self.list.skin()
     }
     /// Number of neighbour-list builds so far.
     pub fn list_builds(&self) -> u64 {

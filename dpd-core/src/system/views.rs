@@ -1,14 +1,14 @@
 //! The state as the sub-flows ([`crate::flow`]) see it: each flow takes the view it needs
 //! through one of these methods, and reports back what the caches and the guarded step must
-//! know (moved positions, force evaluations, pair impulses). No flow touches a cache or a
-//! counter directly.
+//! know (moved positions, force evaluations; what it adds to a recording goes through
+//! `records.rs`). No flow touches a cache or a counter directly.
 
 use super::System;
 use crate::boundary::{LeesEdwards, PeriodicBox};
 use crate::pairs::{Noise, PairTable};
 use crate::params::Params;
 use crate::walls::Walls;
-use crate::{Tensor, Vec3};
+use crate::Vec3;
 
 /// What a drift moves: the particles and the boundaries that wrap them.
 pub(crate) struct Motion<'a> {
@@ -102,39 +102,6 @@ impl System {
     /// One more per-particle force evaluation (counted for [`System::counters`]).
     pub(crate) fn count_force_evaluation(&mut self) {
         self.counters.force_evaluations += 1;
-    }
-
-    /// Whether pair impulses are being recorded for the stress.
-    pub(crate) fn recording_impulses(&self) -> bool {
-        self.impulses.is_some()
-    }
-
-    /// Add a pair impulse virial to the recording (nothing when not recording).
-    pub(crate) fn record_impulses(&mut self, virial: Tensor) {
-        if let Some(impulses) = &mut self.impulses {
-            impulses.add(virial);
-        }
-    }
-
-    /// The kinetic energy before a thermostat sweep, when heat is being recorded (`None`
-    /// otherwise: the sweep then pays one branch).
-    pub(crate) fn heat_mark(&self) -> Option<f64> {
-        self.heat.map(|_| self.kinetic_energy())
-    }
-
-    /// Add the kinetic energy gained since `mark` ([`System::heat_mark`]) to the heat.
-    pub(crate) fn record_heat(&mut self, mark: Option<f64>) {
-        if let (Some(heat), Some(before)) = (self.heat, mark) {
-            self.heat = Some(heat + self.kinetic_energy() - before);
-        }
-    }
-
-    /// Record an F kick of step `h` with the full forces in the cache (nothing when not
-    /// recording).
-    pub(crate) fn record_full_kick(&mut self, h: f64) {
-        if let Some(impulses) = &mut self.impulses {
-            impulses.add_kick(h, self.full_virial.as_ref());
-        }
     }
 
     /// Whether some pairs carry a velocity shift (`PairTable::shifts`): under shear or with walls.
