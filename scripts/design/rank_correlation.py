@@ -54,14 +54,20 @@ def spearman(x, y):
     return "n/a" if sxx == 0 or syy == 0 else f"{sxy / math.sqrt(sxx * syy):+.2f}"
 
 
-def main():
-    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def arguments(description):
+    """The command line of this script and of predict_correlation.py: --dpd, --dt, --gamma
+    (repeatable), --time and --runs."""
+    p = argparse.ArgumentParser(description=description, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--dpd", required=True)
     p.add_argument("--dt", type=float, default=0.08)
     p.add_argument("--gamma", type=float, action="append")
     p.add_argument("--time", type=float, default=200.0)
     p.add_argument("--runs", type=int, default=4)
-    args = p.parse_args()
+    return p.parse_args()
+
+
+def main():
+    args = arguments(__doc__)
     norms = {s: dpd_json(args.dpd, "check", s) for s in SCHEMES}
     for gamma in args.gamma or [4.5, 200.0]:
         rows = []

@@ -3,6 +3,7 @@
 //! sweep the best members and ABOBA on a scene and set the predicted order against the
 //! measured one.
 
+use super::predict::{spectrum_of, SpectrumArgs};
 use super::{bad_input, print_json, sweep};
 use dpd::design::{design, Design, Member, Objective};
 use dpd::lang::compile_family;
@@ -38,6 +39,19 @@ pub struct Args {
     out: PathBuf,
     #[command(flatten)]
     scene: Overrides,
+    /// What chooses the free parameters: `norm` (the order conditions, then the smallest
+    /// error norm) or `predicted` (the longest predicted critical step of 10 % T_C error per
+    /// force evaluation over the family's box, on the modes of --scene and --gamma, as `dpd
+    /// predict`; printed after the norm's design)
+    #[arg(long, value_enum, default_value_t = DesignObjective::Norm)]
+    objective: DesignObjective,
+}
+
+/// How `dpd design` chooses the free parameters.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum DesignObjective {
+    Norm,
+    Predicted,
 }
 
 pub fn main(args: Args) -> ExitCode {
@@ -74,8 +88,35 @@ pub fn main(args: Args) -> ExitCode {
             args.family
         ));
     };
+    let predicted = match args.objective {
+        DesignObjective::Norm => None,
+        DesignObjective::Predicted => {
+            let spectrum = SpectrumArgs {
+                scene: args.scene.scene.clone(),
+                gamma: args.scene.gamma,
+                ..SpectrumArgs::default()
+            };
+            let predictor = match spectrum_of(&spectrum) {
+                Ok((s, _, _)) => dpd_predict::Predictor::new(&s),
+                Err(e) => return bad_input(e),
+            };
+            let points: Vec<Vec<f64>> = d
+                .solutions
+                .iter()
+                .chain(&d.notable)
+                .map(|m| m.parameters.iter().map(|(_, v)| *v).collect())
+                .collect();
+            match dpd_predict::design::best_member(&family, &predictor, &points) {
+                Some(best) => Some(best),
+                None => return bad_input("no point of the family's box can be predicted"),
+            }
+        }
+    };
     if args.json && !args.measure {
-        return print_json(&d);
+        return match &predicted {
+            Some(best) => print_json(&json!({ "design": d, "predicted": best })),
+            None => print_json(&d),
+        };
     }
     if !args.json {
         let inv = |p: Option<u32>| p.map_or("-".to_string(), |p| p.to_string());
@@ -90,6 +131,18 @@ pub fn main(args: Args) -> ExitCode {
         print_members(&d.solutions);
         outln!("notable points:");
         print_members(&d.notable);
+        if let Some(best) = &predicted {
+            outln!(
+                "predicted best ({} members): {}: dt_c 10 % {} per {} force evaluation(s), {}",
+                best.evaluated,
+                point(&best.parameters),
+                best.critical_dt_10
+                    .dt()
+                    .map_or("> 2".to_string(), |dt| format!("{dt:.4}")),
+                best.force_evaluations_per_step,
+                best.program
+            );
+        }
     }
     if args.measure {
         return measure(&d, &args);
@@ -97,17 +150,21 @@ pub fn main(args: Args) -> ExitCode {
     ExitCode::SUCCESS
 }
 
+/// Parameter values as `l = 0.2000000000, c = ...`.
+fn point(parameters: &[(String, f64)]) -> String {
+    let point: Vec<String> = parameters
+        .iter()
+        .map(|(n, v)| format!("{n} = {v:.10}"))
+        .collect();
+    point.join(", ")
+}
+
 fn print_members(members: &[Member]) {
     let norm = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.6}"));
     for m in members {
-        let point: Vec<String> = m
-            .parameters
-            .iter()
-            .map(|(n, v)| format!("{n} = {v:.10}"))
-            .collect();
         outln!(
             "  {}: det {} (norm {}), inv {} (norm {}), freedom {}, {} force / {} pair-distance evaluations",
-            point.join(", "),
+            point(&m.parameters),
             m.deterministic_order,
             norm(m.deterministic_error_norm),
             m.invariant_measure_order.map_or("-".to_string(), |p| p.to_string()),

@@ -8,6 +8,7 @@ mod design;
 mod export;
 mod kl;
 mod orderings;
+mod predict;
 mod progress;
 mod reproduce;
 mod run;
@@ -43,6 +44,8 @@ enum Command {
     Kl(kl::Args),
     /// Enumerate the distinct consistent splitting strings up to a length
     Orderings(orderings::Args),
+    /// Predict a scheme's errors, critical steps and stability from the fluid's harmonic modes
+    Predict(predict::Args),
     /// List the named schemes with their cost and analysed orders
     Schemes(schemes::Args),
     /// Reproduce the tables and figures of the source papers: published against measured
@@ -61,6 +64,7 @@ pub fn main(cli: Cli) -> ExitCode {
         Some(Command::Sweep(args)) => sweep::main(args),
         Some(Command::Check(args)) => check::main(args),
         Some(Command::Orderings(args)) => orderings::main(args),
+        Some(Command::Predict(args)) => predict::main(args),
         Some(Command::Design(args)) => design::main(args),
         Some(Command::Kl(args)) => kl::main(args),
         Some(Command::Schemes(args)) => schemes::main(args),

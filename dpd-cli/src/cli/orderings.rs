@@ -2,10 +2,12 @@
 //! alphabet of sub-flow letters (each letter's occurrences sharing dt equally), with its
 //! orders, cost and symmetry, best invariant-measure bound first, then cheapest.
 
+use super::predict::{spectrum_of, SpectrumArgs};
 use super::{bad_input, print_json};
 use dpd::analysis::{analyse_with, Options};
 use dpd::lang::letters::{letter, spellings, Letter};
 use dpd::Flow;
+use dpd_predict::{Critical, Predictor};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::collections::HashSet;
@@ -24,9 +26,15 @@ pub struct Args {
     alphabet: String,
     /// Order of the list within equal invariant-measure bounds: `cost` (force, then
     /// pair-distance evaluations) or `error` (higher deterministic order, then the smaller
-    /// invariant-measure error norm, then the smaller deterministic error norm, then cost)
+    /// invariant-measure error norm, then the smaller deterministic error norm, then cost) or
+    /// `predicted` (the longest predicted critical step of 10 % T_C error, `dpd predict`, per
+    /// force evaluation; the harmonic prediction cannot see the error of schemes that are
+    /// exact on Gaussians, so the bound still comes first)
     #[arg(long, value_enum, default_value_t = Rank::Cost)]
     rank: Rank,
+    /// The modes `--rank predicted` predicts on
+    #[command(flatten)]
+    spectrum: SpectrumArgs,
     /// Print a JSON array on stdout
     #[arg(long)]
     json: bool,
@@ -37,6 +45,7 @@ pub struct Args {
 pub enum Rank {
     Cost,
     Error,
+    Predicted,
 }
 
 /// One distinct ordering.
@@ -57,6 +66,23 @@ pub struct Ordering {
     pub deterministic_error_norm: Option<f64>,
     /// Norm of the first non-vanishing invariant-measure term, see `dpd check`.
     pub invariant_measure_error_norm: Option<f64>,
+    /// With `--rank predicted`: the predicted critical step of 10 % T_C error (null: not
+    /// reached below 2).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub predicted_critical_dt_10: Option<Option<f64>>,
+}
+
+impl Ordering {
+    /// Predicted critical step per force evaluation (0 without a prediction); a critical step
+    /// beyond the search counts as its end.
+    fn predicted_efficiency(&self) -> f64 {
+        let dt = match self.predicted_critical_dt_10 {
+            Some(Some(dt)) => dt,
+            Some(None) => dpd_predict::predict::SEARCH_DT_MAX,
+            None => 0.0,
+        };
+        dt / self.force_evaluations_per_step.max(1) as f64
+    }
 }
 
 pub fn main(args: Args) -> ExitCode {
@@ -75,13 +101,25 @@ pub fn main(args: Args) -> ExitCode {
             letters.len()
         ));
     }
-    let list = orderings(&letters, args.max_len, args.rank);
+    let predictor = match args.rank {
+        Rank::Predicted => match spectrum_of(&args.spectrum) {
+            Ok((spectrum, _, _)) => Some(Predictor::new(&spectrum)),
+            Err(e) => return bad_input(e),
+        },
+        _ => None,
+    };
+    let list = orderings(&letters, args.max_len, args.rank, predictor.as_ref());
     if args.json {
         return print_json(&list);
     }
     outln!(
-        "{:<width$}  det  inv  force  pairs  sym  program",
+        "{:<width$}  det  inv  force  pairs  sym  {}program",
         "scheme",
+        if predictor.is_some() {
+            "dt_c 10 %  "
+        } else {
+            ""
+        },
         width = args.max_len.max(6) as usize
     );
     for o in &list {
@@ -95,8 +133,13 @@ pub fn main(args: Args) -> ExitCode {
                 }
             )
         });
+        let predicted = match o.predicted_critical_dt_10 {
+            Some(Some(dt)) => format!("{dt:>9.4}  "),
+            Some(None) => format!("{:>9}  ", "> 2"),
+            None => String::new(),
+        };
         outln!(
-            "{:<width$}  {:>3}  {:>3}  {:>5}  {:>5}  {:>3}  {}",
+            "{:<width$}  {:>3}  {:>3}  {:>5}  {:>5}  {:>3}  {predicted}{}",
             o.scheme,
             o.deterministic_order,
             inv,
@@ -166,8 +209,14 @@ fn strings(letters: &[&'static Letter], max_len: u32) -> Vec<Vec<&'static Letter
 
 /// The distinct consistent orderings (the first string of each merged program), sorted by
 /// invariant-measure bound (descending), then by `rank`'s error keys if any, then force and
-/// pair-distance evaluations, length and spelling.
-pub fn orderings(letters: &[&'static Letter], max_len: u32, rank: Rank) -> Vec<Ordering> {
+/// pair-distance evaluations, length and spelling ([`Rank::Predicted`]: the `predictor`'s
+/// critical step per force evaluation, descending).
+pub fn orderings(
+    letters: &[&'static Letter],
+    max_len: u32,
+    rank: Rank,
+    predictor: Option<&Predictor>,
+) -> Vec<Ordering> {
     let stochastic = letters.iter().any(|l| l.flow.is_stochastic());
     let candidates: Vec<String> = strings(letters, max_len)
         .into_iter()
@@ -194,6 +243,8 @@ pub fn orderings(letters: &[&'static Letter], max_len: u32, rank: Rank) -> Vec<O
                     symmetric: program.is_symmetric(),
                     deterministic_error_norm: analysis.deterministic_error_norm,
                     invariant_measure_error_norm: analysis.invariant_measure_error_norm,
+                    predicted_critical_dt_10: predictor
+                        .map(|p| p.critical_dt(&program, 0.1).ok().and_then(Critical::dt)),
                 },
             ))
         })
@@ -210,6 +261,9 @@ pub fn orderings(letters: &[&'static Letter], max_len: u32, rank: Rank) -> Vec<O
     list.sort_by(|a, b| {
         let by_error = match rank {
             Rank::Cost => std::cmp::Ordering::Equal,
+            Rank::Predicted => b
+                .predicted_efficiency()
+                .total_cmp(&a.predicted_efficiency()),
             Rank::Error => b
                 .deterministic_order
                 .cmp(&a.deterministic_order)
@@ -257,7 +311,7 @@ mod tests {
 
     #[test]
     fn length_three_gives_the_six_permutations() {
-        let list = orderings(&abo(), 3, Rank::Cost);
+        let list = orderings(&abo(), 3, Rank::Cost, None);
         let mut names: Vec<_> = list.iter().map(|o| o.scheme.as_str()).collect();
         names.sort();
         assert_eq!(names, ["ABO", "AOB", "BAO", "BOA", "OAB", "OBA"]);
@@ -267,7 +321,7 @@ mod tests {
 
     #[test]
     fn aboba_leads_the_length_five_list_and_duplicates_are_dropped() {
-        let list = orderings(&abo(), 5, Rank::Cost);
+        let list = orderings(&abo(), 5, Rank::Cost, None);
         let best = &list[0];
         assert_eq!(best.invariant_measure_order, Some(2));
         assert_eq!(best.force_evaluations_per_step, 1);
@@ -281,7 +335,7 @@ mod tests {
 
     #[test]
     fn rank_error_sorts_equal_orders_by_the_invariant_measure_norm() {
-        let list = orderings(&abo(), 5, Rank::Error);
+        let list = orderings(&abo(), 5, Rank::Error, None);
         let second: Vec<&Ordering> = list
             .iter()
             .filter(|o| o.invariant_measure_order == Some(2) && o.deterministic_order == 2)

@@ -1,0 +1,102 @@
+//! `dpd predict` and `dpd orderings --rank predicted`: the JSON they print, the known answers
+//! of the harmonic model and bad input (`dpd design --objective predicted` searches with
+//! `dpd_predict::design`, tested there).
+mod cli_support;
+
+use cli_support::{dpd, has_keys, json, refused};
+
+fn tmp() -> std::path::PathBuf {
+    std::env::temp_dir()
+}
+
+/// 64 particles: the smallest spectrum, a fraction of a second in the test profile.
+const SMALL: &str = "--spectrum-particles=64";
+
+#[test]
+fn aboba_is_exact_on_the_modes_and_obab_is_not() {
+    let v = json(&dpd(
+        &tmp(),
+        &[
+            "predict",
+            "aboba",
+            "OBAB",
+            "--dt",
+            "0.05,0.08",
+            SMALL,
+            "--json",
+        ],
+    ));
+    has_keys(
+        &v,
+        &["spectrum_particles", "modes", "max_omega2", "schemes"],
+    );
+    let schemes = v["schemes"].as_array().unwrap();
+    for s in schemes {
+        has_keys(
+            s,
+            &[
+                "scheme",
+                "program",
+                "rows",
+                "stability_limit",
+                "critical_dt_10",
+            ],
+        );
+    }
+    let tc = |s: usize, row: usize| {
+        schemes[s]["rows"][row]["configurational_temperature"]
+            .as_f64()
+            .unwrap()
+    };
+    // ABOBA samples positions exactly on any harmonic mode; OBAB's T_C error is positive
+    // and grows with dt.
+    assert!(tc(0, 1).abs() < 1e-9, "aboba {}", tc(0, 1));
+    assert!(
+        tc(1, 0) > 0.01 && tc(1, 1) > tc(1, 0),
+        "OBAB {} {}",
+        tc(1, 0),
+        tc(1, 1)
+    );
+    // ABOBA's critical step is its stability limit, 2 / omega_max.
+    let limit = schemes[0]["stability_limit"].as_f64().unwrap();
+    let omega_max = v["max_omega2"].as_f64().unwrap().sqrt();
+    assert!(
+        (limit * omega_max - 2.0).abs() < 1e-3,
+        "{limit} {omega_max}"
+    );
+    assert_eq!(schemes[0]["critical_dt_10"]["status"], "stability_limit");
+}
+
+#[test]
+fn bad_input_is_refused_naming_the_flag() {
+    refused(
+        &dpd(&tmp(), &["predict", "aboba", "--spectrum-particles", "5"]),
+        "--spectrum-particles",
+    );
+    refused(&dpd(&tmp(), &["predict", "aboba", "--dt", "-1"]), "--dt");
+    refused(&dpd(&tmp(), &["predict", "gw-0.65"]), "hand-written");
+    refused(&dpd(&tmp(), &["predict", "ABQ"]), "scheme");
+}
+
+#[test]
+fn orderings_rank_predicted_adds_the_critical_step() {
+    let v = json(&dpd(
+        &tmp(),
+        &[
+            "orderings",
+            "--max-len",
+            "3",
+            "--rank",
+            "predicted",
+            SMALL,
+            "--json",
+        ],
+    ));
+    let list = v.as_array().unwrap();
+    assert_eq!(list.len(), 6);
+    let dt: Vec<f64> = list
+        .iter()
+        .map(|o| o["predicted_critical_dt_10"].as_f64().unwrap())
+        .collect();
+    assert!(dt.windows(2).all(|w| w[0] >= w[1]), "{dt:?}");
+}

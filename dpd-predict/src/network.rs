@@ -1,0 +1,199 @@
+//! The harmonic spectrum of a DPD configuration: its pair network.
+//!
+//! Every pair within the cut-off is a radial spring of stiffness `phi''(r) = a / r_c` (the
+//! soft potential's curvature, the same for every pair inside r_c) and a radial dashpot
+//! `gamma w_D(r)`, as the pair's O update acts along `e_ij` only. The mass-weighted stiffness
+//! matrix `K` and friction matrix `Gamma` (3N x 3N) give the modes: the eigenvalues of `K` are
+//! the squared frequencies, and each mode's friction is its Rayleigh quotient of `Gamma`.
+//! The transverse curvature `phi'(r)/r` is left out: it is negative (the repulsion pushes
+//! pairs apart), and with it the network has unstable modes with no stationary state.
+//!
+//! The eigendecomposition is dense, O((3N)^3): a few hundred particles at the fluid's density
+//! give the spectrum's shape (it is a per-particle density), in about a second.
+
+use crate::spectrum::{Mode, Spectrum};
+use nalgebra::{DMatrix, SymmetricEigen};
+
+/// The pair interactions a network is built with (algorithms.md section 1).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PairModel {
+    /// Repulsion `a`.
+    pub a: f64,
+    /// Cut-off `r_c`.
+    pub rc: f64,
+    /// Friction `gamma`.
+    pub gamma: f64,
+    /// Weight exponent `s`: `w_D(r) = (1 - r/r_c)^s`.
+    pub weight_exponent: f64,
+    /// `k_B T`.
+    pub kbt: f64,
+}
+
+/// Modes whose squared frequency is below this fraction of the largest are zero modes (the
+/// centre of mass, particles without neighbours) and are left out.
+const ZERO_MODE: f64 = 1e-9;
+
+/// Why a configuration has no network.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum NetworkError {
+    #[error("invalid {field} = {value}: {allowed}")]
+    Invalid {
+        field: &'static str,
+        value: String,
+        allowed: &'static str,
+    },
+}
+
+fn invalid(
+    field: &'static str,
+    value: impl std::fmt::Debug,
+    allowed: &'static str,
+) -> NetworkError {
+    NetworkError::Invalid {
+        field,
+        value: format!("{value:?}"),
+        allowed,
+    }
+}
+
+/// The spectrum of the pair network of one configuration: positions `q` in a periodic box of
+/// edges `edges`, particle masses `masses`.
+pub fn spectrum(
+    q: &[[f64; 3]],
+    masses: &[f64],
+    edges: [f64; 3],
+    model: PairModel,
+) -> Result<Spectrum, NetworkError> {
+    let n = q.len();
+    if masses.len() != n {
+        return Err(invalid(
+            "masses",
+            masses.len(),
+            "must have one entry per position",
+        ));
+    }
+    if let Some(m) = masses.iter().find(|m| !(m.is_finite() && **m > 0.0)) {
+        return Err(invalid("masses", m, "must be finite and positive"));
+    }
+    if let Some(x) = q.iter().find(|x| x.iter().any(|c| !c.is_finite())) {
+        return Err(invalid("positions", x, "must be finite"));
+    }
+    if edges.iter().any(|l| !(l.is_finite() && *l > 0.0)) {
+        return Err(invalid("edges", edges, "must be finite and positive"));
+    }
+    let finite = [
+        model.a,
+        model.rc,
+        model.gamma,
+        model.weight_exponent,
+        model.kbt,
+    ];
+    if finite.iter().any(|x| !x.is_finite())
+        || model.rc <= 0.0
+        || model.kbt <= 0.0
+        || model.gamma < 0.0
+    {
+        return Err(invalid(
+            "pair model",
+            model,
+            "needs finite values, r_c > 0, k_B T > 0 and gamma >= 0",
+        ));
+    }
+    let mut k = DMatrix::<f64>::zeros(3 * n, 3 * n);
+    let mut g = DMatrix::<f64>::zeros(3 * n, 3 * n);
+    let stiffness = model.a / model.rc;
+    for i in 0..n {
+        for j in i + 1..n {
+            let mut d = [0.0; 3];
+            for c in 0..3 {
+                let x = q[i][c] - q[j][c];
+                d[c] = x - edges[c] * (x / edges[c]).round();
+            }
+            let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+            if r >= model.rc || r == 0.0 {
+                continue;
+            }
+            let wd = (1.0 - r / model.rc).powf(model.weight_exponent);
+            let e = d.map(|x| x / r);
+            let scale = 1.0 / (masses[i] * masses[j]).sqrt();
+            for a in 0..3 {
+                for b in 0..3 {
+                    let ee = e[a] * e[b];
+                    for (u, v, sign) in [(i, i, 1.0), (j, j, 1.0), (i, j, -1.0), (j, i, -1.0)] {
+                        let mass = if u == v { 1.0 / masses[u] } else { scale };
+                        k[(3 * u + a, 3 * v + b)] += sign * mass * stiffness * ee;
+                        g[(3 * u + a, 3 * v + b)] += sign * mass * model.gamma * wd * ee;
+                    }
+                }
+            }
+        }
+    }
+    let eigen = SymmetricEigen::new(k);
+    let largest = eigen.eigenvalues.iter().copied().fold(0.0, f64::max);
+    let modes = eigen
+        .eigenvalues
+        .iter()
+        .enumerate()
+        .filter(|&(_, &w2)| w2 > ZERO_MODE * largest)
+        .map(|(col, &omega2)| {
+            let v = eigen.eigenvectors.column(col);
+            let gamma = (v.transpose() * &g * v)[(0, 0)].max(0.0);
+            Mode { omega2, gamma }
+        })
+        .collect();
+    let volume = edges.iter().product();
+    Ok(Spectrum {
+        modes,
+        particles: n,
+        volume,
+        kbt: model.kbt,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    /// Two particles at distance r: one mode, the relative coordinate, with stiffness
+    /// `a / r_c` over the reduced mass `m / 2` and friction `gamma w_D(r)` over it; the
+    /// centre of mass and the two rotations are zero modes.
+    /// The standard box's pair forces (algorithms.md section 8).
+    fn standard() -> PairModel {
+        PairModel {
+            a: 25.0,
+            rc: 1.0,
+            gamma: 4.5,
+            weight_exponent: 2.0,
+            kbt: 1.0,
+        }
+    }
+
+    #[test]
+    fn a_pair_has_one_mode_of_its_reduced_mass() {
+        let model = standard();
+        let (m, r) = (2.0, 0.6);
+        let s = spectrum(
+            &[[1.0, 1.0, 1.0], [1.0 + r, 1.0, 1.0]],
+            &[m, m],
+            [5.0; 3],
+            model,
+        )
+        .unwrap();
+        assert_eq!(s.modes.len(), 1);
+        assert_relative_eq!(s.modes[0].omega2, 2.0 * 25.0 / m, max_relative = 1e-12);
+        let wd = (1.0 - r) * (1.0 - r);
+        assert_relative_eq!(s.modes[0].gamma, 2.0 * 4.5 * wd / m, max_relative = 1e-12);
+    }
+
+    #[test]
+    fn bad_configurations_are_refused() {
+        let model = standard();
+        let q = [[0.0; 3], [0.5, 0.0, 0.0]];
+        assert!(spectrum(&q, &[1.0], [5.0; 3], model).is_err());
+        assert!(spectrum(&q, &[1.0, 0.0], [5.0; 3], model).is_err());
+        assert!(spectrum(&q, &[1.0, 1.0], [5.0, 0.0, 5.0], model).is_err());
+        let nan = [[f64::NAN, 0.0, 0.0], [0.5, 0.0, 0.0]];
+        assert!(spectrum(&nan, &[1.0, 1.0], [5.0; 3], model).is_err());
+    }
+}
