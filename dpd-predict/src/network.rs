@@ -4,7 +4,8 @@
 //! soft potential's curvature, the same for every pair inside r_c) and a radial dashpot
 //! `gamma w_D(r)`, as the pair's O update acts along `e_ij` only. The mass-weighted stiffness
 //! matrix `K` and friction matrix `Gamma` (3N x 3N) give the modes: the eigenvalues of `K` are
-//! the squared frequencies, and each mode's friction is its Rayleigh quotient of `Gamma`.
+//! the squared frequencies, and each mode's friction is its Rayleigh quotient of `Gamma`;
+//! one more mode is `Gamma`'s stiffest direction (`stiffest_friction`).
 //! The transverse curvature `phi'(r)/r` is left out: it is negative (the repulsion pushes
 //! pairs apart), and with it the network has unstable modes with no stationary state.
 //!
@@ -128,9 +129,10 @@ pub fn spectrum(
             }
         }
     }
+    let probe = stiffest_friction(&g, &k);
     let eigen = SymmetricEigen::new(k);
     let largest = eigen.eigenvalues.iter().copied().fold(0.0, f64::max);
-    let modes = eigen
+    let mut modes: Vec<Mode> = eigen
         .eigenvalues
         .iter()
         .enumerate()
@@ -141,12 +143,49 @@ pub fn spectrum(
             Mode { omega2, gamma }
         })
         .collect();
+    modes.extend(probe);
     let volume = edges.iter().product();
     Ok(Spectrum {
         modes,
         particles: n,
         volume,
         kbt: model.kbt,
+    })
+}
+
+/// Power iterations for the friction matrix's largest eigenvalue, and their tolerance.
+const POWER_ITERATIONS: usize = 1000;
+const POWER_TOLERANCE: f64 = 1e-9;
+
+/// The friction matrix's stiffest direction `u` as one more mode: friction its largest
+/// eigenvalue, squared frequency `u^T K u`. The stiffness eigenvectors average the friction
+/// matrix's largest eigenvalue down (the two matrices do not commute), and an explicit
+/// friction (F) is stable only while dt times that eigenvalue stays small: this mode keeps
+/// the stability limit of velocity Verlet at high friction; among hundreds of modes its
+/// weight in the averages is negligible. `None` without friction.
+fn stiffest_friction(g: &DMatrix<f64>, k: &DMatrix<f64>) -> Option<Mode> {
+    let n = g.nrows();
+    // A start with a component along every direction (no symmetry of the box cancels it).
+    let mut u = nalgebra::DVector::from_fn(n, |i, _| 1.0 + ((i * 7919) % 13) as f64 / 13.0);
+    let mut lambda = 0.0;
+    for _ in 0..POWER_ITERATIONS {
+        let w = g * &u;
+        let norm = w.norm();
+        if norm == 0.0 {
+            return None;
+        }
+        let next = norm / u.norm();
+        u = w / norm;
+        if (next - lambda).abs() <= POWER_TOLERANCE * next {
+            lambda = next;
+            break;
+        }
+        lambda = next;
+    }
+    let omega2 = (u.transpose() * k * &u)[(0, 0)];
+    Some(Mode {
+        omega2,
+        gamma: lambda,
     })
 }
 
@@ -180,10 +219,13 @@ mod tests {
             model,
         )
         .unwrap();
-        assert_eq!(s.modes.len(), 1);
-        assert_relative_eq!(s.modes[0].omega2, 2.0 * 25.0 / m, max_relative = 1e-12);
+        // The pair's mode, and the friction matrix's stiffest direction: the same one.
+        assert_eq!(s.modes.len(), 2);
         let wd = (1.0 - r) * (1.0 - r);
-        assert_relative_eq!(s.modes[0].gamma, 2.0 * 4.5 * wd / m, max_relative = 1e-12);
+        for mode in &s.modes {
+            assert_relative_eq!(mode.omega2, 2.0 * 25.0 / m, max_relative = 1e-9);
+            assert_relative_eq!(mode.gamma, 2.0 * 4.5 * wd / m, max_relative = 1e-9);
+        }
     }
 
     #[test]

@@ -9,7 +9,7 @@ use serde::Serialize;
 /// The errors a program makes at one dt, exact for the harmonic modes of the spectrum.
 ///
 /// With `ex_k = omega2_k <x_k^2> / k_B T - 1` and `ep_k = <p_k^2> / k_B T - 1` the relative
-/// errors of mode k's configurational and kinetic variances: T_C = <|F|^2> / <lap U> of the
+/// errors of mode k's configurational and kinetic variances: T_C = `<|F|^2> / <lap U>` of the
 /// modes is off by `sum omega2_k ex_k / sum omega2_k`, T_K by the mean of `ep_k`, the
 /// potential energy per particle by `k_B T sum ex_k / (2 N)`, and the pressure by
 /// `(k_B T / V) (N ep_mean - sum ex_k / 3)`: the kinetic part, and the virial of radial
@@ -73,7 +73,7 @@ pub struct Prediction {
 }
 
 /// Smallest and largest dt the searches look at, and their grid factor; a crossing found on
-/// the grid is refined by bisection to [`REFINE`] relative.
+/// the grid is refined by bisection to a relative 1e-6 (`REFINE`).
 pub const SEARCH_DT_MIN: f64 = 1e-3;
 pub const SEARCH_DT_MAX: f64 = 2.0;
 const SEARCH_FACTOR: f64 = 1.03;
