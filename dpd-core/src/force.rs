@@ -1,22 +1,19 @@
-//! Per-particle forces summed over the interacting pairs in sweep order.
+//! Per-particle forces summed over the interacting pairs in sweep order: the pair forces, each
+//! computed from what the pair engine hands it ([`Ends`]), and the passes that sum them.
 
 use crate::boundary::PeriodicBox;
 use crate::neighbour::VerletList;
-use crate::pairs::{Bound, ByPair, Noise, Pair, PairTable, Run, Two, Virial};
+use crate::pairs::{Ends, Noise, PairTable, Particles, Run, Two, Virial};
 use crate::params::Params;
-use crate::params::Repulsion;
 use crate::Vec3;
 use dpd_ir::SweepOrder;
 
 /// `out_i = F^C_i = sum_j a_ij (1 - r_ij/r_c) e_ij`.
 /// `out` is resized to one entry per particle (it is allocated on first use, so a scheme that
 /// never kicks with B holds no conservative-force array).
-pub(crate) fn conservative(pairs: &PairTable, params: &Params, kind: &[u16], out: &mut Vec<Vec3>) {
-    let add = Conservative::new(pairs.bound(), params, kind);
-    let out = zeroed(out, kind.len());
-    // SAFETY: the pairs of the table whose bound made `add`.
-    let each = move |pair: &Pair, fi: &mut _, fj: &mut _| unsafe { add.pair(pair, fi, fj) };
-    pairs.for_each_pair(SweepOrder::Forward, out, each);
+pub(crate) fn conservative(pairs: &PairTable, particles: Particles, out: &mut Vec<Vec3>) {
+    let out = zeroed(out, particles.len());
+    pairs.for_each_pair(SweepOrder::Forward, particles, out, add_conservative);
 }
 
 /// `out` as `n` zero vectors.
@@ -26,37 +23,15 @@ pub(crate) fn zeroed(out: &mut Vec<Vec3>, n: usize) -> &mut [Vec3] {
     out
 }
 
-/// The sum of the conservative forces into per-particle totals, pair by pair: what
-/// [`conservative`] does over a table, and what a fill does run by run
+/// Add the conservative force of a pair, `f = a_ij w e`, to the total `fi` of particle i and
+/// `-f` to `fj`: what [`conservative`] does over a table, and what a fill does run by run
 /// ([`PairTable::collect_then`]), so that both give the same numbers.
-#[derive(Clone, Copy)]
-pub(crate) struct Conservative<'a> {
-    kind: ByPair<'a, u16>,
-    a: Repulsion<'a>,
-}
-
-impl<'a> Conservative<'a> {
-    /// The forces of the pairs of a table with index bound `bound`.
-    pub(crate) fn new(bound: Bound, params: &'a Params, kind: &'a [u16]) -> Self {
-        Conservative {
-            kind: bound.read(kind),
-            a: params.repulsion(),
-        }
-    }
-
-    /// Add the force of `pair`, `f = a_ij w e`, to the total `fi` of particle i and `-f` to
-    /// `fj`.
-    ///
-    /// # Safety
-    /// `pair` is a pair of the table (or fill) whose bound made this.
-    #[inline(always)]
-    pub(crate) unsafe fn pair(&self, pair: &Pair, fi: &mut Vec3, fj: &mut Vec3) {
-        // SAFETY: the caller's contract.
-        let soft = self.a.soft(|| unsafe { self.kind.get_two(pair.i, pair.j) });
-        let f = soft.force(pair.w) * pair.e;
-        *fi += f;
-        *fj -= f;
-    }
+#[inline(always)]
+pub(crate) fn add_conservative(ends: Ends, fi: &mut Vec3, fj: &mut Vec3) {
+    let pair = ends.pair();
+    let f = ends.soft().force(pair.w) * pair.e;
+    *fi += f;
+    *fj -= f;
 }
 
 /// Full DPD forces at the current momenta into `s.full`, from the pair table:
@@ -72,73 +47,55 @@ pub(crate) fn full<const SHIFTED: bool, V: Virial>(s: FullInputs) -> V {
     s.pairs.sweep_noisy(
         SweepOrder::Forward,
         s.noise,
+        s.particles,
         out,
-        move |pair, two, z, dvx| {
-            // SAFETY: the pairs of the table whose bound made `add`.
-            unsafe { add.pair::<SHIFTED, V>(pair, two, z, dvx) }
-        },
+        move |ends, two, z, dvx| add.pair::<SHIFTED, V>(ends, two, z, dvx),
     )
 }
 
 /// [`full`] while the pair table is filled ([`PairTable::collect_then`]): each run's normals
 /// and forces while it is in cache, in the order of a pass over the table, so the same
 /// numbers. For a periodic box without walls, not recording impulses, with the list built for
-/// the current positions and `s.add` made with the bound of the positions; leaves the table
-/// filled.
+/// the current positions; leaves the table filled.
 pub(crate) fn full_while_filling(s: FullInputs) {
-    let noise = s.noise.map(|noise| noise.of(Bound::of(s.q)));
     let add = s.add;
-    // SAFETY: the pairs of the fill, whose bound (`Bound::of(q)`) made `add`.
     let forces =
-        move |pair: &Pair, two: Two<_>, z, _| unsafe { add.pair::<false, ()>(pair, two, z, 0.0) };
-    let each = |run: Run<Vec3>| run.sweep(noise, forces);
+        move |ends: Ends<&[Vec3]>, two: Two<Vec3>, z, _| add.pair::<false, ()>(ends, two, z, 0.0);
+    let each = |run: Run<Vec3, _>| run.sweep(forces);
     let out = zeroed(s.full, s.q.len());
-    s.pairs.collect_then(s.list, s.q, s.bx, s.params, out, each);
+    s.pairs
+        .collect_then(s.list, s.q, s.bx, s.params, s.noise, s.particles, out, each);
 }
 
-/// What a full-force evaluation reads and writes: the pair table and what fills it, the force
-/// totals, the pair forces and the noise.
+/// What a full-force evaluation reads and writes: the pair table and what fills it, the
+/// particles with their momenta, the force totals, the pair forces and the noise.
 pub(crate) struct FullInputs<'a> {
     pub(crate) pairs: &'a mut PairTable,
     pub(crate) list: &'a VerletList,
     pub(crate) q: &'a [Vec3],
     pub(crate) bx: &'a PeriodicBox,
     pub(crate) params: &'a Params,
+    pub(crate) particles: Particles<'a, &'a [Vec3]>,
     pub(crate) full: &'a mut Vec<Vec3>,
-    pub(crate) add: Full<'a>,
+    pub(crate) add: Full,
     pub(crate) noise: Option<Noise<'a>>,
 }
 
-/// The sum of the full DPD forces into per-particle totals, pair by pair: what [`full`] does
+/// The full DPD force of one pair added to the totals of its particles: what [`full`] does
 /// over a table, and what a fill does run by run ([`PairTable::collect_then`]), so that both
 /// give the same numbers.
 #[derive(Clone, Copy)]
-pub(crate) struct Full<'a> {
-    p: ByPair<'a, Vec3>,
-    inv_mass: ByPair<'a, f64>,
-    kind: ByPair<'a, u16>,
-    a: Repulsion<'a>,
+pub(crate) struct Full {
     rc: f64,
     gamma: f64,
     /// `sigma / sqrt(dt)`.
     noise: f64,
 }
 
-impl<'a> Full<'a> {
-    /// The forces of the pairs of a table with index bound `bound`, at momenta `p` (with
-    /// `inv_mass` and `kind` the particles' inverse masses and types) and time step `dt`
-    /// (which scales the random force).
-    pub(crate) fn new(
-        bound: Bound,
-        params: &'a Params,
-        dt: f64,
-        (p, inv_mass, kind): (&'a [Vec3], &'a [f64], &'a [u16]),
-    ) -> Self {
+impl Full {
+    /// The forces of `params` at time step `dt` (which scales the random force).
+    pub(crate) fn new(params: &Params, dt: f64) -> Self {
         Full {
-            p: bound.read(p),
-            inv_mass: bound.read(inv_mass),
-            kind: bound.read(kind),
-            a: params.repulsion(),
             rc: params.rc(),
             gamma: params.gamma(),
             noise: params.sigma() / dt.sqrt(),
@@ -162,34 +119,21 @@ impl<'a> Full<'a> {
         })
     }
 
-    /// Add the force of `pair` with standard normal `z` and velocity shift `dvx` (used only
-    /// when `SHIFTED`) to the total of particle i and its opposite to that of j, and return its
-    /// dissipative and random part as `V`.
-    ///
-    /// # Safety
-    /// `pair` is a pair of the table (or fill) whose bound made this.
+    /// Add the force of the pair of `ends` with standard normal `z` and velocity shift `dvx`
+    /// (used only when `SHIFTED`) to the total of particle i and its opposite to that of j, and
+    /// return its dissipative and random part as `V`.
     #[inline(always)]
-    pub(crate) unsafe fn pair<const SHIFTED: bool, V: Virial>(
+    pub(crate) fn pair<const SHIFTED: bool, V: Virial>(
         &self,
-        pair: &Pair,
+        ends: Ends<&[Vec3]>,
         two: Two<Vec3>,
         z: f64,
         dvx: f64,
     ) -> V {
-        let (i, j) = (pair.i, pair.j);
-        // SAFETY (both): the caller's contract.
-        let u = unsafe {
-            pair.normal_velocity::<SHIFTED>(
-                self.p.get(i) * self.inv_mass.get(i),
-                self.p.get(j) * self.inv_mass.get(j),
-                dvx,
-            )
-        };
-        // SAFETY: the caller's contract.
-        let conservative = self
-            .a
-            .soft(|| unsafe { self.kind.get_two(i, j) })
-            .force(pair.w);
+        let pair = ends.pair();
+        let ((pi, pj), (mi, mj)) = (ends.momenta(), ends.inv_masses());
+        let u = pair.normal_velocity::<SHIFTED>(pi * mi, pj * mj, dvx);
+        let conservative = ends.soft().force(pair.w);
         let f = full_pair_force(conservative, self.gamma, self.noise, pair.wr, u, z);
         let fe = f * pair.e;
         let (fi, fj) = two.split();

@@ -51,20 +51,18 @@ pub(crate) use x86::{F64x4, F64x4x2, Vector};
 #[cfg(target_arch = "x86_64")]
 mod x86 {
     use super::Lanes;
+    use crate::avx2::Avx2;
     use std::arch::x86_64::*;
     use std::ops::{Add, Div, Mul, Neg, Sub};
 
     /// `N` lanes of `f64` in vector registers: what the vectorised `expm1` needs besides
-    /// [`Lanes`]. A value exists only on a CPU with AVX2 ([`Vector::from_fn`] is `unsafe`
-    /// for that reason), so the other operations are safe.
+    /// [`Lanes`]. A value exists only on a CPU with AVX2 ([`Vector::from_fn`] takes the proof,
+    /// [`Avx2`]), so the other operations are safe.
     pub(crate) trait Vector<const N: usize>: Lanes {
         /// Lane `l` set to `f(l)`, built in registers: values stored one by one and loaded
         /// as one (a load of an array made in place) cannot be forwarded from the stores, and
         /// the load waits until they reach the cache.
-        ///
-        /// # Safety
-        /// The CPU must support AVX2.
-        unsafe fn from_fn(f: impl Fn(usize) -> f64) -> Self;
+        fn from_fn(avx2: Avx2, f: impl Fn(usize) -> f64) -> Self;
         fn to_array(self) -> [f64; N];
         /// Whether every lane lies in `lo..=hi` (false for NaN).
         fn within(self, lo: f64, hi: f64) -> bool;
@@ -82,8 +80,8 @@ mod x86 {
 
     impl Vector<4> for F64x4 {
         #[inline(always)]
-        unsafe fn from_fn(f: impl Fn(usize) -> f64) -> Self {
-            // SAFETY: AVX is part of AVX2 (the caller's contract).
+        fn from_fn(_: Avx2, f: impl Fn(usize) -> f64) -> Self {
+            // SAFETY: AVX is part of AVX2, which the CPU has (`Avx2`).
             F64x4(unsafe { _mm256_set_pd(f(3), f(2), f(1), f(0)) })
         }
 
@@ -152,9 +150,8 @@ mod x86 {
 
     impl Vector<8> for F64x4x2 {
         #[inline(always)]
-        unsafe fn from_fn(f: impl Fn(usize) -> f64) -> Self {
-            // SAFETY: the caller's contract.
-            unsafe { F64x4x2(F64x4::from_fn(&f), F64x4::from_fn(|l| f(l + 4))) }
+        fn from_fn(avx2: Avx2, f: impl Fn(usize) -> f64) -> Self {
+            F64x4x2(F64x4::from_fn(avx2, &f), F64x4::from_fn(avx2, |l| f(l + 4)))
         }
 
         #[inline(always)]
@@ -274,11 +271,11 @@ mod x86 {
 
         /// Every operation of `V` on lanes `a` and `b` equals the scalar one in every lane.
         fn every_operation_is_the_scalar_one<const N: usize, V: Vector<N>>(
+            avx2: Avx2,
             a: [f64; N],
             b: [f64; N],
         ) {
-            // SAFETY: the callers check for AVX2.
-            let (x, y) = unsafe { (V::from_fn(|l| a[l]), V::from_fn(|l| b[l])) };
+            let (x, y) = (V::from_fn(avx2, |l| a[l]), V::from_fn(avx2, |l| b[l]));
             // Bits, but any NaN as one: Rust leaves NaN payloads and signs unspecified (a
             // constant-folded 0 / 0 and the CPU's differ in the sign).
             let bits = |x: f64| {
@@ -308,22 +305,20 @@ mod x86 {
                 each(|a, b| if a > 0.0 { a } else { b })
             );
             assert!(!x.within(-10.0, 10.0));
-            // SAFETY: as above.
-            let inside = unsafe { V::from_fn(|l| [0.0, -1.0, -40.0, -0.5][l % 4]) };
+            let inside = V::from_fn(avx2, |l| [0.0, -1.0, -40.0, -0.5][l % 4]);
             assert!(inside.within(-40.0, 0.0));
             for lane in 0..N {
                 // One lane at a time out of range.
                 let c: [f64; N] = std::array::from_fn(|l| if l == lane { 1.0 } else { -0.5 });
-                // SAFETY: as above.
-                assert!(!unsafe { V::from_fn(|l| c[l]) }.within(-40.0, 0.0));
+                assert!(!V::from_fn(avx2, |l| c[l]).within(-40.0, 0.0));
             }
         }
 
         #[test]
         fn every_operation_is_the_scalar_one_in_every_lane() {
-            if !std::arch::is_x86_feature_detected!("avx2") {
+            let Some(avx2) = Avx2::detect() else {
                 return;
-            }
+            };
             let a = [
                 1.5,
                 -0.0,
@@ -336,10 +331,11 @@ mod x86 {
             ];
             let b = [-2.25, 0.0, 7.0, f64::INFINITY, -1.0, 4.0, f64::NAN, -0.0];
             every_operation_is_the_scalar_one::<4, F64x4>(
+                avx2,
                 std::array::from_fn(|l| a[l]),
                 std::array::from_fn(|l| b[l]),
             );
-            every_operation_is_the_scalar_one::<8, F64x4x2>(a, b);
+            every_operation_is_the_scalar_one::<8, F64x4x2>(avx2, a, b);
         }
     }
 }

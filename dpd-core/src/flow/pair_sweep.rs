@@ -1,48 +1,15 @@
 use super::expm1::expm1;
 #[cfg(target_arch = "x86_64")]
 use super::expm1::expm1_within;
+#[cfg(target_arch = "x86_64")]
+use crate::avx2::Avx2;
 use crate::lanes::Lanes;
 #[cfg(target_arch = "x86_64")]
 use crate::lanes::{F64x4, F64x4x2, Vector};
-use crate::pairs::{ByPair, Pair, Two, Virial};
-use crate::params::Repulsion;
-use crate::potential::Soft;
+use crate::pairs::{Ends, Particles, Span, Two, Virial};
 use crate::system::{PairState, System};
 use crate::{Tensor, Vec3};
 use dpd_ir::SweepOrder;
-
-/// What a pair update needs besides the pair and its normal: the particles' inverse masses,
-/// and on request their soft repulsion ([`Particles::soft`]).
-#[derive(Clone, Copy)]
-struct Particles<'a> {
-    inv_mass: ByPair<'a, f64>,
-    repulsion: Repulsion<'a>,
-    kind: ByPair<'a, u16>,
-}
-
-impl Particles<'_> {
-    /// The inverse reduced mass `mu = 1/m_i + 1/m_j` of the pair.
-    ///
-    /// # Safety
-    /// `pair` is a pair of the table whose bound made this (`sweep_with`): the sweep hands
-    /// the flows' [`Changes`] only runs of that table.
-    #[inline(always)]
-    unsafe fn mu(self, pair: &Pair) -> f64 {
-        // SAFETY: the caller's contract.
-        unsafe { self.inv_mass.get(pair.i) + self.inv_mass.get(pair.j) }
-    }
-
-    /// The soft repulsion of the pair's types.
-    ///
-    /// # Safety
-    /// As for [`Particles::mu`].
-    #[inline(always)]
-    unsafe fn soft(self, pair: &Pair) -> Soft {
-        // SAFETY: the caller's contract.
-        self.repulsion
-            .soft(|| unsafe { self.kind.get_two(pair.i, pair.j) })
-    }
-}
 
 /// The change of one pair's relative normal velocity `u = e . v_ij`, `du = slope u + offset`,
 /// with `slope` and `offset` divided by `mu` ([`per_mass`]), so that `slope u + offset` is the
@@ -57,7 +24,7 @@ pub struct Change {
 }
 
 /// Visit the interacting pairs successively in `order`, each run of the table after
-/// `changes(particles, pairs, z, out)` has pushed the [`Change`] of each of its pairs (normals
+/// `changes(span, z, out)` has pushed the [`Change`] of each pair of the run's `span` (normals
 /// `z`) onto `out`, for `u` with the image velocity across a sliding boundary, applied as
 /// `p_i += du/mu e`, `p_j -= du/mu e`. Slope and offset come from the pair's geometry and
 /// noise alone, so that they are computed in a loop of their own (vectorised where the flow
@@ -89,8 +56,8 @@ fn sweep(sys: &mut System, stream: u8, order: SweepOrder, changes: impl Changes)
 }
 
 /// How a flow computes the [`Change`]s of a run ([`sweep`]).
-trait Changes: Fn(Particles, &[Pair], &[f64], &mut Vec<Change>) + Sync + Copy {}
-impl<F: Fn(Particles, &[Pair], &[f64], &mut Vec<Change>) + Sync + Copy> Changes for F {}
+trait Changes: Fn(Span, &[f64], &mut Vec<Change>) + Sync + Copy {}
+impl<F: Fn(Span, &[f64], &mut Vec<Change>) + Sync + Copy> Changes for F {}
 
 #[inline(always)]
 fn sweep_with<const SHIFTED: bool, V: Virial>(
@@ -108,25 +75,20 @@ fn sweep_with<const SHIFTED: bool, V: Virial>(
         ..
     } = state;
     let noise = (params.sigma() > 0.0).then_some(noise);
-    let inv_mass = pairs.read(inv_mass);
-    let particles = Particles {
-        inv_mass,
-        repulsion: params.repulsion(),
-        kind: pairs.read(kind),
-    };
+    let particles = Particles::new(inv_mass, kind, params.repulsion());
     let rc = params.rc();
     pairs.sweep_prepared(
         order,
         noise,
+        particles,
         p,
-        #[inline(always)]
-        move |run: &[Pair], z: &[f64], out: &mut Vec<Change>| changes(particles, run, z, out),
+        changes,
         // Inlined into both loops that visit (pairs of alternating runs, and the rest).
         #[inline(always)]
-        move |pair: &Pair, two: Two<Vec3>, change: Change, dvx| {
+        move |ends: Ends, two: Two<Vec3>, change: Change, dvx| {
+            let pair = ends.pair();
             let (pi, pj) = two.split();
-            // SAFETY: a pair of `pairs`, whose bound made `inv_mass`.
-            let (mi, mj) = unsafe { (inv_mass.get(pair.i), inv_mass.get(pair.j)) };
+            let (mi, mj) = ends.inv_masses();
             let u = pair.normal_velocity::<SHIFTED>(*pi * mi, *pj * mj, dvx);
             let impulse = change.slope * u + change.offset;
             let dp = impulse * pair.e;
@@ -167,53 +129,31 @@ fn ou_change<L: Lanes>(kbt: f64, mu: L, em1: L, r: L) -> (L, L) {
     per_mass(em1, ou_std(kbt, mu, em1) * r, mu)
 }
 
-/// Push the [`ou_change`] of every pair of a run (normals `z`) onto `out`: several pairs at
-/// once in AVX2 registers when the CPU has them and all their exponents lie in `[-40, 0]` (so
-/// with `gamma mu h <= 40`), else pair by pair; the same numbers either way. The vectorised
-/// loop takes eight pairs at a time in two registers ([`F64x4x2`]): their two chains of
-/// dependent operations are independent, and the CPU overlaps them (with four pairs at a time
+/// Push the [`ou_change`] of every pair of a run's `span` (normals `z`) onto `out`: several
+/// pairs at once in AVX2 registers when the CPU has them and all their exponents lie in
+/// `[-40, 0]` (so with `gamma mu h <= 40`), else pair by pair; the same numbers either way. The
+/// vectorised loop takes eight pairs at a time in two registers ([`F64x4x2`]): their two chains
+/// of dependent operations are independent, and the CPU overlaps them (with four pairs at a time
 /// in one register this loop took 9.5 instead of 6.8 timestamp-counter cycles per pair, at
 /// N = 24 000 on the development VM).
-///
-/// # Safety
-/// As for [`Particles::mu`], for every pair of `pairs`.
 #[inline(always)]
-unsafe fn ou_changes(
-    ou: (f64, f64, f64),
-    with: Particles,
-    pairs: &[Pair],
-    z: &[f64],
-    out: &mut Vec<Change>,
-) {
-    // SAFETY: `ou_changes` is called with runs of the table that made `with` (its contract).
-    let each = pair_by_pair(move |with, pair: &Pair, r| unsafe { ou_pair(ou, with, pair, r) });
+fn ou_changes(ou: (f64, f64, f64), span: Span, z: &[f64], out: &mut Vec<Change>) {
+    let each = pair_by_pair(move |ends, r| ou_pair(ou, ends, r));
     #[cfg(target_arch = "x86_64")]
-    let (pairs, z) = if std::arch::is_x86_feature_detected!("avx2") {
-        // SAFETY: the feature was detected; pairs of the table that made `with` (the caller's
-        // contract).
-        unsafe {
-            let (pairs, z) = ou_groups::<8, F64x4x2>(ou, with, pairs, z, out, each);
-            ou_groups::<4, F64x4>(ou, with, pairs, z, out, each)
+    let (span, z) = match Avx2::detect() {
+        Some(avx2) => {
+            let (span, z) = ou_groups::<8, F64x4x2>(avx2, ou, span, z, out, each);
+            ou_groups::<4, F64x4>(avx2, ou, span, z, out, each)
         }
-    } else {
-        (pairs, z)
+        None => (span, z),
     };
-    each(with, pairs, z, out)
+    each(span, z, out)
 }
 
 /// The [`ou_change`] of one pair with normal `r`.
-///
-/// # Safety
-/// As for [`Particles::mu`].
 #[inline(always)]
-unsafe fn ou_pair(
-    (gamma, kbt, h): (f64, f64, f64),
-    with: Particles,
-    pair: &Pair,
-    r: f64,
-) -> Change {
-    // SAFETY: the caller's contract.
-    ou_update(gamma, kbt, h, pair.wr, unsafe { with.mu(pair) }, r)
+fn ou_pair((gamma, kbt, h): (f64, f64, f64), ends: Ends, r: f64) -> Change {
+    ou_update(gamma, kbt, h, ends.pair().wr, ends.mu(), r)
 }
 
 /// The O update of one pair (see [`ou`]) with random weight `wr`, inverse reduced mass
@@ -230,56 +170,43 @@ pub fn ou_update(gamma: f64, kbt: f64, h: f64, wr: f64, mu: f64, r: f64) -> Chan
     }
 }
 
-/// Push the [`ou_change`]s of `pairs` (normals `z`) onto `out`, `N` at a time in lanes `V`
-/// ([`ou_lanes`]), or by `each` (pair by pair) where an exponent is out of range; return the
-/// fewer than `N` pairs left over, with their normals.
-///
-/// # Safety
-/// The CPU must support AVX2, and `pairs` are pairs of the table that made `with`.
+/// Push the [`ou_change`]s of the pairs of `span` (normals `z`) onto `out`, `N` at a time in
+/// lanes `V` ([`ou_lanes`]), or by `each` (pair by pair) where an exponent is out of range;
+/// return the fewer than `N` pairs left over, with their normals.
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
-unsafe fn ou_groups<'a, const N: usize, V: Vector<N>>(
+fn ou_groups<'a, const N: usize, V: Vector<N>>(
+    avx2: Avx2,
     ou: (f64, f64, f64),
-    with: Particles,
-    pairs: &'a [Pair],
+    span: Span<'a>,
     z: &'a [f64],
     out: &mut Vec<Change>,
     each: impl Changes,
-) -> (&'a [Pair], &'a [f64]) {
-    let (groups, groups_z) = (pairs.chunks_exact(N), z.chunks_exact(N));
-    let rest = (groups.remainder(), groups_z.remainder());
-    for (pairs, z) in groups.zip(groups_z) {
-        // SAFETY: the caller's contract.
-        match unsafe { ou_lanes::<N, V>(ou, with, pairs, z) } {
+) -> (Span<'a>, &'a [f64]) {
+    let ((groups, rest), groups_z) = (span.chunks_exact(N), z.chunks_exact(N));
+    let rest = (rest, groups_z.remainder());
+    for (span, z) in groups.zip(groups_z) {
+        match ou_lanes::<N, V>(avx2, ou, span, z) {
             Some(changes) => out.extend(changes),
-            None => each(with, pairs, z, out),
+            None => each(span, z, out),
         }
     }
     rest
 }
 
-/// The [`ou_change`]s of the first `N` pairs (normals `z`) at once in lanes `V`, `None` unless
-/// all their exponents lie in `[-40, 0]`.
-///
-/// # Safety
-/// The CPU must support AVX2, and `pairs` are pairs of the table that made `with`.
+/// The [`ou_change`]s of the first `N` pairs of `span` (normals `z`) at once in lanes `V`,
+/// `None` unless all their exponents lie in `[-40, 0]`.
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
-unsafe fn ou_lanes<const N: usize, V: Vector<N>>(
+fn ou_lanes<const N: usize, V: Vector<N>>(
+    avx2: Avx2,
     (gamma, kbt, h): (f64, f64, f64),
-    with: Particles,
-    pairs: &[Pair],
+    span: Span,
     z: &[f64],
 ) -> Option<[Change; N]> {
-    // SAFETY: the caller's contract.
-    // SAFETY: the caller's contract (AVX2, and pairs of the table that made `with`).
-    let (wr, mu, r) = unsafe {
-        (
-            V::from_fn(|l| pairs[l].wr),
-            V::from_fn(|l| with.mu(&pairs[l])),
-            V::from_fn(|l| z[l]),
-        )
-    };
+    let wr = V::from_fn(avx2, |l| span.get(l).pair().wr);
+    let mu = V::from_fn(avx2, |l| span.get(l).mu());
+    let r = V::from_fn(avx2, |l| z[l]);
     let x = ou_exponent(gamma, h, wr, mu);
     // No closure around the lane operations: it would not be compiled with AVX2.
     if !x.within(-40.0, 0.0) {
@@ -309,9 +236,8 @@ pub fn ou(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
         stream,
         order,
         #[inline(always)]
-        move |with: Particles, pairs: &[Pair], z: &[f64], out: &mut Vec<Change>| {
-            // SAFETY: `sweep` hands the changes only runs of the table that made `with`.
-            unsafe { ou_changes((gamma, kbt, h), with, pairs, z, out) }
+        move |span: Span, z: &[f64], out: &mut Vec<Change>| {
+            ou_changes((gamma, kbt, h), span, z, out)
         },
     );
     sys.record_heat(mark);
@@ -327,18 +253,8 @@ pub fn bbk(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
         return;
     }
     let root_h = h.max(0.0).sqrt();
-    // SAFETY: `sweep` hands the changes only runs of the table that made `with`.
-    let change = move |with: Particles, pair: &Pair, r: f64| {
-        bbk_update(
-            gamma,
-            sigma,
-            h,
-            root_h,
-            pair.wr,
-            unsafe { with.mu(pair) },
-            r,
-        )
-    };
+    let change =
+        move |ends: Ends, r: f64| bbk_update(gamma, sigma, h, root_h, ends.pair().wr, ends.mu(), r);
     let mark = sys.heat_mark();
     sweep(sys, stream, order, pair_by_pair(change));
     sys.record_heat(mark);
@@ -366,10 +282,10 @@ pub fn bbk_update(gamma: f64, sigma: f64, h: f64, root_h: f64, wr: f64, mu: f64,
 pub fn trotter(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
     let (gamma, kbt) = (sys.params().gamma(), sys.params().kbt());
     sys.count_force_evaluation();
-    // SAFETY (both): `sweep` hands the changes only runs of the table that made `with`.
-    let change = move |with: Particles, pair: &Pair, r: f64| {
-        let f = unsafe { with.soft(pair) }.force(pair.w);
-        trotter_update(gamma, kbt, h, f, pair.wr, unsafe { with.mu(pair) }, r)
+    let change = move |ends: Ends, r: f64| {
+        let pair = ends.pair();
+        let f = ends.soft().force(pair.w);
+        trotter_update(gamma, kbt, h, f, pair.wr, ends.mu(), r)
     };
     sweep(sys, stream, order, pair_by_pair(change));
     sys.apply_body_force(h);
@@ -393,19 +309,19 @@ pub fn trotter_update(gamma: f64, kbt: f64, h: f64, f: f64, wr: f64, mu: f64, r:
 }
 
 /// The [`Changes`] of a flow that computes the change of each pair on its own,
-/// `change(particles, pair, r)` for normal `r`.
+/// `change(ends, r)` for normal `r`.
 #[inline(always)]
-fn pair_by_pair(change: impl Fn(Particles, &Pair, f64) -> Change + Sync + Copy) -> impl Changes {
+fn pair_by_pair(change: impl Fn(Ends, f64) -> Change + Sync + Copy) -> impl Changes {
     #[inline(always)]
-    move |with, pairs: &[Pair], z: &[f64], out: &mut Vec<Change>| {
-        out.extend(pairs.iter().zip(z).map(|(pair, &r)| change(with, pair, r)));
+    move |span: Span, z: &[f64], out: &mut Vec<Change>| {
+        out.extend(span.iter().zip(z).map(|(ends, &r)| change(ends, r)));
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::pairs::Bound;
+    use crate::pairs::Pair;
     use crate::Params;
 
     #[test]
@@ -417,12 +333,7 @@ mod tests {
         let params = Params::builder().build().unwrap();
         let inv_mass: Vec<f64> = (0..64).map(|k| 0.1 + (k as f64 * 0.11) % 5.0).collect();
         let kind = vec![0; inv_mass.len()];
-        let bound = Bound::of(&vec![Vec3::zeros(); inv_mass.len()]);
-        let with = Particles {
-            inv_mass: bound.read(&inv_mass),
-            repulsion: params.repulsion(),
-            kind: bound.read(&kind),
-        };
+        let particles = Particles::new(&inv_mass, &kind, params.repulsion());
         for (k, big) in (0..1000).zip([1.0, 1.0, 1.0, 300.0].into_iter().cycle()) {
             let t = k as f64;
             let n = 4 + k % 13;
@@ -437,11 +348,11 @@ mod tests {
                 .collect();
             let z: Vec<f64> = (0..n).map(|l| (t * 0.7 + l as f64).sin() * 3.0).collect();
             let mut changes = Vec::new();
-            // SAFETY (both): indices below 64, the bound that made `with`.
-            unsafe { ou_changes((gamma * big, kbt, h), with, &pairs, &z, &mut changes) };
+            let span = Span::checked(&pairs, particles);
+            ou_changes((gamma * big, kbt, h), span, &z, &mut changes);
             assert_eq!(changes.len(), n);
             for ((pair, &r), c) in pairs.iter().zip(&z).zip(&changes) {
-                let mu = unsafe { with.mu(pair) };
+                let mu = inv_mass[pair.i as usize] + inv_mass[pair.j as usize];
                 let em1 = expm1(ou_exponent(gamma * big, h, pair.wr, mu));
                 let (s, o) = ou_change(kbt, mu, em1, r);
                 assert_eq!(

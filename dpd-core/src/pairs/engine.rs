@@ -1,5 +1,5 @@
 //! The engine that visits the table's pairs in the sweep order, owning the aliasing of the
-//! per-particle arrays the visits update.
+//! per-particle arrays the visits update and the checks of those they read.
 
 use crate::avx2::with_avx2;
 use crate::disjoint::Disjoint;
@@ -8,7 +8,9 @@ use rayon::prelude::*;
 use std::cell::RefCell;
 use std::ops::Range;
 
-use super::{on_all_threads, Drawn, Noise, Pair, PairTable, Virial};
+use super::{
+    on_all_threads, Drawn, Ends, Momenta, Noise, Pair, PairTable, Particles, Span, Virial,
+};
 
 thread_local! {
     /// The standard normals of the run a noisy visit is at, one buffer per thread.
@@ -16,30 +18,32 @@ thread_local! {
 }
 
 /// The engine: every pair visit of the crate goes through the methods below, which hand each
-/// call of the visiting closure one pair of the table with its two particles' entries of a
-/// per-particle array `out`: `(&mut out[i], &mut out[j])`, or a [`Two`] that gives them where
-/// the closure writes (the sweeps; the full forces' loop took 1 % more instructions when the
-/// references were made before the visit, the conservative forces' plain loop 1.6 % more
-/// with a `Two`). The engine owns the aliasing: the table's pairs join distinct particles
-/// below its bound, `out` is checked once to have an entry for each, and runs visited at the
-/// same time touch disjoint particles; so the closures need no unsafe code to write and cannot
-/// write to any other particle.
+/// call of the visiting closure one pair of the table as [`Ends`] (the pair with what its
+/// update reads of its two particles, from the [`Particles`] the method was given) and its two
+/// particles' entries of a per-particle array `out`: `(&mut out[i], &mut out[j])`, or a [`Two`]
+/// that gives them where the closure writes (the sweeps; the full forces' loop took 1 % more
+/// instructions when the references were made before the visit, the conservative forces' plain
+/// loop 1.6 % more with a `Two`). The engine owns the aliasing and the bounds: the table's pairs
+/// join distinct particles below its bound, `out` and the particles' arrays are checked once to
+/// have an entry for each, and runs visited at the same time touch disjoint particles; so the
+/// closures need no unsafe code to read or write and cannot write to any other particle.
 impl PairTable {
-    /// Call `visit(pair, out_i, out_j)` for every pair once, in the sweep order (`Forward`) or
+    /// Call `visit(ends, out_i, out_j)` for every pair once, in the sweep order (`Forward`) or
     /// in exactly the reverse order (`Reverse`). Runs of one colour go to different threads
     /// when the grid is coloured and the table is large; they touch disjoint particles, so the
     /// result is the same as the sequential visit on any number of threads.
-    pub(crate) fn for_each_pair<W: Send>(
+    pub(crate) fn for_each_pair<M: Momenta, W: Send>(
         &self,
         order: SweepOrder,
+        particles: Particles<M>,
         out: &mut [W],
-        visit: impl Fn(&Pair, &mut W, &mut W) + Sync + Copy,
+        visit: impl Fn(Ends<M>, &mut W, &mut W) + Sync + Copy,
     ) {
-        let each = move |p: &Pair, two: Two<W>, _, _| {
+        let each = move |ends: Ends<M>, two: Two<W>, _, _| {
             let (wi, wj) = two.split();
-            visit(p, wi, wj)
+            visit(ends, wi, wj)
         };
-        self.sweep_noisy(order, None, out, each)
+        self.sweep_noisy(order, None, particles, out, each)
     }
 
     /// [`PairTable::for_each_pair`] handing each pair also its standard normal of `noise` (0
@@ -49,48 +53,55 @@ impl PairTable {
     /// normals of a run are drawn just before it is visited, while its pairs are in cache
     /// ([`crate::rng::pair_normals`]); they are the numbers [`crate::rng::pair_normal`]
     /// gives.
-    pub(crate) fn sweep_noisy<T: Virial, W: Send>(
+    pub(crate) fn sweep_noisy<M: Momenta, T: Virial, W: Send>(
         &self,
         order: SweepOrder,
         noise: Option<Noise>,
+        particles: Particles<M>,
         out: &mut [W],
-        visit: impl Fn(&Pair, Two<W>, f64, f64) -> T + Sync + Copy,
+        visit: impl Fn(Ends<M>, Two<W>, f64, f64) -> T + Sync + Copy,
     ) -> T {
         let shifts = self.shifts();
         let noise = noise.map(|noise| noise.of(self.bound()));
+        particles.check(self.bound());
         let out = self.bound().write(out);
         self.fold_groups::<1, T>(order, |runs| {
             let (range, pairs) = runs[0].clone();
             let dvx = shifts.map(|s| &s[range][..pairs.len()]);
-            // SAFETY: a run of this table, `out` made for its bound, and other threads only at
-            // runs of the same colour (`fold_groups`).
-            [unsafe { sweep_run(pairs, out, dvx, order, noise, visit) }]
+            // SAFETY: a run of this table, `particles` checked and `out` made for its bound,
+            // and other threads only at runs of the same colour (`fold_groups`).
+            [unsafe { sweep_run(pairs, particles, out, dvx, order, noise, visit) }]
         })
     }
 
     /// [`PairTable::sweep_noisy`] with a preparation: before a run is visited,
-    /// `prepare(pairs, z, prepared)` pushes onto `prepared` one value per pair of the run, in
-    /// table order, computed from the pairs and their normals `z` (all 0 without noise) alone;
-    /// then `visit(pair, out_i, out_j, p, dvx)` gets each pair's value `p`, in `order`.
-    /// `prepare` must not read what the visits change. The preparation runs as a loop of its
-    /// own, so that it may be vectorised and does not compete with the visits' chain of
-    /// momentum updates, and up to [`INTERLEAVED`] runs of a colour are visited alternately,
-    /// pair by pair.
-    pub(crate) fn sweep_prepared<P: Copy, T: Virial, W: Send>(
+    /// `prepare(span, z, prepared)` pushes onto `prepared` one value per pair of the run's
+    /// `span`, in table order, computed from the pairs, what they read of their particles and
+    /// their normals `z` (all 0 without noise) alone; then `visit(ends, two, p, dvx)` gets each
+    /// pair's value `p`, in `order`. `prepare` must not read what the visits change. The
+    /// preparation runs as a loop of its own, so that it may be vectorised and does not compete
+    /// with the visits' chain of momentum updates, and up to [`INTERLEAVED`] runs of a colour
+    /// are visited alternately, pair by pair.
+    pub(crate) fn sweep_prepared<M: Momenta, P: Copy, T: Virial, W: Send>(
         &self,
         order: SweepOrder,
         noise: Option<Noise>,
+        particles: Particles<M>,
         out: &mut [W],
-        prepare: impl Fn(&[Pair], &[f64], &mut Vec<P>) + Sync + Copy,
-        visit: impl Fn(&Pair, Two<W>, P, f64) -> T + Sync + Copy,
+        prepare: impl Fn(Span<M>, &[f64], &mut Vec<P>) + Sync + Copy,
+        visit: impl Fn(Ends<M>, Two<W>, P, f64) -> T + Sync + Copy,
     ) -> T {
         let shifts = self.shifts();
         let noise = noise.map(|noise| noise.of(self.bound()));
+        particles.check(self.bound());
         let out = self.bound().write(out);
         self.fold_groups::<INTERLEAVED, T>(order, |runs| {
-            // SAFETY: runs of this table that touch disjoint particles, `out` made for its
-            // bound, and other threads only at other runs of the same colour (`fold_groups`).
-            unsafe { sweep_group_prepared(runs, out, shifts, order, noise, prepare, visit) }
+            // SAFETY: runs of this table that touch disjoint particles, `particles` checked and
+            // `out` made for its bound, and other threads only at other runs of the same colour
+            // (`fold_groups`).
+            unsafe {
+                sweep_group_prepared(runs, particles, out, shifts, order, noise, prepare, visit)
+            }
         })
     }
 
@@ -165,40 +176,44 @@ impl PairTable {
 /// (one thread): 2 alternating runs 1.66 ms, 3 runs 1.60 ms, 4 runs 1.50 ms (medians of 12).
 const INTERLEAVED: usize = 4;
 
-/// A run of pairs just filled ([`PairTable::collect_then`]), with the entries of its particles
-/// in a per-particle array: made only by the engine, for a run no other thread touches.
-pub(crate) struct Run<'a, W> {
+/// A run of pairs just filled ([`PairTable::collect_then`]), with what its pairs read of their
+/// particles, their noise and the entries of its particles in a per-particle array: made only
+/// by the engine, for a run no other thread touches, with particles, noise and entries checked
+/// against the fill's bound.
+pub(crate) struct Run<'a, W, M> {
     pub(super) pairs: &'a [Pair],
+    pub(super) particles: Particles<'a, M>,
+    pub(super) noise: Option<Drawn<'a>>,
     pub(super) out: Disjoint<'a, W>,
 }
 
-impl<W> Run<'_, W> {
-    /// `visit(pair, out_i, out_j)` for each pair in table order, in a plain loop.
+impl<W, M: Momenta> Run<'_, W, M> {
+    /// `visit(ends, out_i, out_j)` for each pair in table order, in a plain loop.
     #[inline(always)]
-    pub(crate) fn for_each(self, visit: impl Fn(&Pair, &mut W, &mut W)) {
+    pub(crate) fn for_each(self, visit: impl Fn(Ends<M>, &mut W, &mut W)) {
         for pair in self.pairs {
-            // SAFETY: a run of the engine (see `Run`).
+            // SAFETY (both): a run of the engine (see `Run`).
             let (wi, wj) = unsafe { both(self.out, pair) }.split();
-            visit(pair, wi, wj);
+            visit(unsafe { Ends::new(pair, self.particles) }, wi, wj);
         }
     }
 
     /// The run visited as [`PairTable::sweep_noisy`] visits a run in the `Forward` order,
-    /// without velocity shifts, with the normals of `noise`.
+    /// without velocity shifts.
     #[inline(always)]
     pub(crate) fn sweep<T: Virial>(
         self,
-        noise: Option<Drawn>,
-        visit: impl Fn(&Pair, Two<W>, f64, f64) -> T + Copy,
+        visit: impl Fn(Ends<M>, Two<W>, f64, f64) -> T + Copy,
     ) -> T {
         // SAFETY: a run of the engine (see `Run`).
         unsafe {
             sweep_run(
                 self.pairs,
+                self.particles,
                 self.out,
                 None,
                 SweepOrder::Forward,
-                noise,
+                self.noise,
                 visit,
             )
         }
@@ -230,6 +245,9 @@ impl<'a, W> Two<'a, W> {
 /// # Safety
 /// `pair` is a pair of the table (or fill) whose bound `out` was made with (`Bound::write`),
 /// and no other thread is at a pair of `i` or `j` while the [`Two`] lives.
+///
+/// The engine's functions below share this contract for every pair they visit, and for the
+/// [`Particles`] they hand with them ([`Ends::new`]): checked against the same bound.
 #[inline(always)]
 unsafe fn both<'a, W>(out: Disjoint<'a, W>, pair: &Pair) -> Two<'a, W> {
     Two {
@@ -246,13 +264,14 @@ unsafe fn both<'a, W>(out: Disjoint<'a, W>, pair: &Pair) -> Two<'a, W> {
 /// # Safety
 /// As for [`both`], for every pair of `pairs`.
 #[inline(always)]
-unsafe fn sweep_run<T: Virial, W>(
+unsafe fn sweep_run<M: Copy, T: Virial, W>(
     pairs: &[Pair],
+    particles: Particles<M>,
     out: Disjoint<W>,
     dvx: Option<&[f64]>,
     order: SweepOrder,
     noise: Option<Drawn>,
-    visit: impl Fn(&Pair, Two<W>, f64, f64) -> T + Copy,
+    visit: impl Fn(Ends<M>, Two<W>, f64, f64) -> T + Copy,
 ) -> T {
     NORMALS.with_borrow_mut(|normals| {
         // Everything the loop reads is moved in, so that the compiler sees that the updates
@@ -271,7 +290,7 @@ unsafe fn sweep_run<T: Virial, W>(
                 // One call of `visit`, so that the compiler inlines it.
                 let z = move |k: usize| z.map_or(0.0, |z| z[k]);
                 // SAFETY: the caller's contract.
-                unsafe { sweep_in_order(T::default(), pairs, out, z, dvx, order, visit) }
+                unsafe { sweep_in_order(T::default(), pairs, particles, out, z, dvx, order, visit) }
             },
         )
     })
@@ -285,14 +304,15 @@ unsafe fn sweep_run<T: Virial, W>(
 /// As for [`both`], for every pair of the runs; and the runs touch disjoint particles.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-unsafe fn sweep_group_prepared<const K: usize, P: Copy, T: Virial, W>(
+unsafe fn sweep_group_prepared<const K: usize, M: Copy, P: Copy, T: Virial, W>(
     runs: &[(Range<usize>, &[Pair])],
+    particles: Particles<M>,
     out: Disjoint<W>,
     shifts: Option<&[f64]>,
     order: SweepOrder,
     noise: Option<Drawn>,
-    prepare: impl Fn(&[Pair], &[f64], &mut Vec<P>) + Copy,
-    visit: impl Fn(&Pair, Two<W>, P, f64) -> T + Copy,
+    prepare: impl Fn(Span<M>, &[f64], &mut Vec<P>) + Copy,
+    visit: impl Fn(Ends<M>, Two<W>, P, f64) -> T + Copy,
 ) -> [T; K] {
     NORMALS.with_borrow_mut(|normals| {
         with_avx2(
@@ -313,7 +333,8 @@ unsafe fn sweep_group_prepared<const K: usize, P: Copy, T: Virial, W>(
                         // SAFETY: the caller's contract.
                         unsafe { noise.draw(pairs, z) };
                     }
-                    prepare(pairs, z, &mut prepared);
+                    // SAFETY: the caller's contract.
+                    prepare(unsafe { Span::new(pairs, particles) }, z, &mut prepared);
                     assert_eq!(prepared.len(), start + pairs.len(), "one value per pair");
                     start += pairs.len();
                 }
@@ -328,7 +349,7 @@ unsafe fn sweep_group_prepared<const K: usize, P: Copy, T: Virial, W>(
                 let mut sums = std::array::from_fn(|_| T::default());
                 // SAFETY (both calls): the caller's contract.
                 if runs.len() > 1 && shifts.is_none() {
-                    unsafe { alternate_runs(each, out, order, visit, &mut sums) };
+                    unsafe { alternate_runs(each, particles, out, order, visit, &mut sums) };
                 } else {
                     for ((&(pairs, prepared), (range, _)), sum) in
                         each.iter().zip(runs).zip(&mut sums)
@@ -336,7 +357,16 @@ unsafe fn sweep_group_prepared<const K: usize, P: Copy, T: Virial, W>(
                         let dvx = shifts.map(|s| &s[range.clone()]);
                         let prepared = move |k: usize| prepared[k];
                         *sum = unsafe {
-                            sweep_in_order(T::default(), pairs, out, prepared, dvx, order, visit)
+                            sweep_in_order(
+                                T::default(),
+                                pairs,
+                                particles,
+                                out,
+                                prepared,
+                                dvx,
+                                order,
+                                visit,
+                            )
                         };
                     }
                 }
@@ -353,11 +383,12 @@ unsafe fn sweep_group_prepared<const K: usize, P: Copy, T: Virial, W>(
 /// # Safety
 /// As for [`sweep_group_prepared`].
 #[inline(always)]
-unsafe fn alternate_runs<const K: usize, P: Copy, T: Virial, W>(
+unsafe fn alternate_runs<const K: usize, M: Copy, P: Copy, T: Virial, W>(
     runs: &[(&[Pair], &[P])],
+    particles: Particles<M>,
     out: Disjoint<W>,
     order: SweepOrder,
-    visit: impl Fn(&Pair, Two<W>, P, f64) -> T + Copy,
+    visit: impl Fn(Ends<M>, Two<W>, P, f64) -> T + Copy,
     sums: &mut [T; K],
 ) {
     let common = runs.iter().map(|(pairs, _)| pairs.len()).min().unwrap_or(0);
@@ -376,9 +407,9 @@ unsafe fn alternate_runs<const K: usize, P: Copy, T: Virial, W>(
         let k = if reverse { common - 1 - m } else { m };
         for ((pairs, values), sum) in firsts.iter().zip(sums.iter_mut()) {
             let pair = &pairs[k];
-            // SAFETY: the caller's contract.
-            let two = unsafe { both(out, pair) };
-            *sum = std::mem::take(sum).add(visit(pair, two, values[k], 0.0));
+            // SAFETY (both): the caller's contract.
+            let (ends, two) = unsafe { (Ends::new(pair, particles), both(out, pair)) };
+            *sum = std::mem::take(sum).add(visit(ends, two, values[k], 0.0));
         }
     }
     for (&(pairs, values), sum) in runs.iter().zip(sums) {
@@ -390,12 +421,14 @@ unsafe fn alternate_runs<const K: usize, P: Copy, T: Virial, W>(
         let (pairs, values) = (&pairs[rest.clone()], &values[rest]);
         let values = move |k: usize| values[k];
         // SAFETY: the caller's contract.
-        *sum =
-            unsafe { sweep_in_order(std::mem::take(sum), pairs, out, values, None, order, visit) };
+        *sum = unsafe {
+            let sum = std::mem::take(sum);
+            sweep_in_order(sum, pairs, particles, out, values, None, order, visit)
+        };
     }
 }
 
-/// Add to `sum` `visit(pair, out_i, out_j, q(k), dvx)` over the pairs of a run in `order`, `k`
+/// Add to `sum` `visit(ends, two, q(k), dvx)` over the pairs of a run in `order`, `k`
 /// the pair's position in the run and `dvx` its velocity shift (0 with `None`). `visit` is
 /// called from one place, so that the compiler inlines it into the loop (from four loops, one
 /// for each order and shift, it made `visit` a function called per pair: VV's step took 5 %
@@ -404,14 +437,16 @@ unsafe fn alternate_runs<const K: usize, P: Copy, T: Virial, W>(
 /// # Safety
 /// As for [`both`], for every pair of `pairs`.
 #[inline(always)]
-unsafe fn sweep_in_order<Q, T: Virial, W>(
+#[allow(clippy::too_many_arguments)]
+unsafe fn sweep_in_order<M: Copy, Q, T: Virial, W>(
     mut sum: T,
     pairs: &[Pair],
+    particles: Particles<M>,
     out: Disjoint<W>,
     q: impl Fn(usize) -> Q + Copy,
     dvx: Option<&[f64]>,
     order: SweepOrder,
-    visit: impl Fn(&Pair, Two<W>, Q, f64) -> T + Copy,
+    visit: impl Fn(Ends<M>, Two<W>, Q, f64) -> T + Copy,
 ) -> T {
     let (n, reverse) = (pairs.len(), order == SweepOrder::Reverse);
     let dvx = dvx.map(|dvx| &dvx[..n]);
@@ -419,9 +454,9 @@ unsafe fn sweep_in_order<Q, T: Virial, W>(
         let k = if reverse { n - 1 - m } else { m };
         let shift = dvx.map_or(0.0, |dvx| dvx[k]);
         let pair = &pairs[k];
-        // SAFETY: the caller's contract.
-        let two = unsafe { both(out, pair) };
-        sum = sum.add(visit(pair, two, q(k), shift));
+        // SAFETY (both): the caller's contract.
+        let (ends, two) = unsafe { (Ends::new(pair, particles), both(out, pair)) };
+        sum = sum.add(visit(ends, two, q(k), shift));
     }
     sum
 }
@@ -462,23 +497,32 @@ mod tests {
         }
         let seen = RefCell::new(vec![Vec::new(); lengths.len()]);
         let seen_ref = &seen;
-        // Each visit counts itself at its two particles.
+        // Each visit counts itself at its two particles, whose inverse masses are their
+        // indices.
         let mut visits = vec![0u32; 100 * lengths.len()];
+        let inv_mass: Vec<f64> = (0..visits.len()).map(|i| i as f64).collect();
+        let kind = vec![0; visits.len()];
+        let params = crate::Params::builder().build().unwrap();
+        let particles = Particles::new(&inv_mass, &kind, params.repulsion());
         let out = Disjoint::new(&mut visits);
         // SAFETY: the runs join distinct particles below `100 * runs`, disjoint between runs,
         // and one thread visits them.
         let sums = unsafe {
-            sweep_group_prepared::<K, u32, Tensor, u32>(
+            sweep_group_prepared::<K, (), u32, Tensor, u32>(
                 &runs,
+                particles,
                 out,
                 shifted.then_some(&shifts),
                 order,
                 None,
-                |run: &[Pair], z: &[f64], out: &mut Vec<u32>| {
-                    assert_eq!(z, vec![0.0; run.len()], "no noise: normals 0");
-                    out.extend(run.iter().map(|p| 10 * p.i))
+                |run: Span, z: &[f64], out: &mut Vec<u32>| {
+                    assert_eq!(z, vec![0.0; run.iter().count()], "no noise: normals 0");
+                    out.extend(run.iter().map(|ends| 10 * ends.pair().i))
                 },
-                move |pair, two: Two<u32>, prepared, dvx| {
+                move |ends: Ends, two: Two<u32>, prepared, dvx| {
+                    let pair = ends.pair();
+                    let (mi, mj) = ends.inv_masses();
+                    assert_eq!((mi, mj), (f64::from(pair.i), f64::from(pair.j)));
                     let (wi, wj) = two.split();
                     (*wi, *wj) = (*wi + 1, *wj + 1);
                     let run = (pair.i / 100) as usize;

@@ -7,7 +7,7 @@ use crate::params::Params;
 use crate::walls::FrozenWalls;
 use crate::Vec3;
 
-use super::{on_all_threads, Bound, Pair, PairTable, Run};
+use super::{on_all_threads, Bound, Momenta, Noise, Pair, PairTable, Particles, Run};
 
 impl PairTable {
     /// Refill with the pairs of `list` that interact at positions `q`, keeping its order: from
@@ -26,10 +26,7 @@ impl PairTable {
         params: &Params,
     ) {
         match (shear, walls) {
-            (None, None) => {
-                let nothing = &mut vec![(); q.len()];
-                self.collect_then(list, q, bx, params, nothing, |_: Run<()>| {})
-            }
+            (None, None) => self.fill_plainly(list, q, bx, params, |_: &[Pair]| {}),
             // The scan's separation is the image, but the velocity shift needs the crossing
             // count: both come from the positions.
             (Some(le), _) => {
@@ -56,26 +53,53 @@ impl PairTable {
 
     /// [`PairTable::collect`] in a periodic box without walls, calling `after(run)` for every
     /// run of the new table as soon as it is filled, while its pairs are in cache: on the
-    /// thread that filled it, colour by colour, so that `after` may update the particles of
-    /// the run's pairs in `out` (one entry per particle) as [`PairTable::for_each_pair`] would,
-    /// in the same order. The table's indices are below `Bound::of(q)`.
-    pub(crate) fn collect_then<W: Send>(
+    /// thread that filled it, colour by colour, so that `after` may read what the run's pairs
+    /// read of `particles`, draw their normals of `noise` and update their particles' entries
+    /// in `out` (one per particle) as [`PairTable::sweep_noisy`] would, in the same order.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn collect_then<M: Momenta, W: Send>(
         &mut self,
         list: &VerletList,
         q: &[Vec3],
         bx: &PeriodicBox,
         params: &Params,
+        noise: Option<Noise>,
+        particles: Particles<M>,
         out: &mut [W],
-        after: impl Fn(Run<W>) + Sync,
+        after: impl Fn(Run<W, M>) + Sync,
     ) {
-        let out = Bound::of(q).write(out);
-        let fill = self.start_fill(list, q, bx, None, params, false);
-        let image = |_, _, d| Some(bx.min_image(d));
+        let bound = Bound::of(q);
+        let noise = noise.map(|noise| noise.of(bound));
+        particles.check(bound);
+        let out = bound.write(out);
         // A fill hands `after` its runs as they are filled: pairs of distinct particles below
         // `q.len()`, and runs on different threads at the same time only from one colour,
-        // whose runs touch disjoint particles; `out` has an entry for each (`Bound::write`).
-        let run = move |pairs: &[Pair]| after(Run { pairs, out });
-        fill.into(self, image, None::<Separation>, run);
+        // whose runs touch disjoint particles; the noise's ids, `particles` and `out` have an
+        // entry for each.
+        let run = move |pairs: &[Pair]| {
+            after(Run {
+                pairs,
+                particles,
+                noise,
+                out,
+            })
+        };
+        self.fill_plainly(list, q, bx, params, run);
+    }
+
+    /// Refill in a periodic box without walls, calling `after` with the pairs of every run once
+    /// it is filled ([`Fill::into`]); the table's indices are below `Bound::of(q)`.
+    fn fill_plainly(
+        &mut self,
+        list: &VerletList,
+        q: &[Vec3],
+        bx: &PeriodicBox,
+        params: &Params,
+        after: impl Fn(&[Pair]) + Sync,
+    ) {
+        let fill = self.start_fill(list, q, bx, None, params, false);
+        let image = |_, _, d| Some(bx.min_image(d));
+        fill.into(self, image, None::<Separation>, after);
     }
 
     /// Reset the table for a fill at positions `q`, which records velocity shifts if

@@ -1,10 +1,14 @@
 //! The interacting pairs of the current positions, with the geometry every sub-flow needs:
-//! the table and what reads it by pair index (this module), its fill (`fill.rs`) and the engine
-//! that visits it in the sweep order of [`crate::neighbour`] (`engine.rs`).
+//! the table (this module), its fill (`fill.rs`), the engine that visits it in the sweep order
+//! of [`crate::neighbour`] (`engine.rs`) and what the engine hands each pair update to read
+//! (`ends.rs`).
 
+mod ends;
 mod engine;
 mod fill;
 
+use ends::Momenta;
+pub(crate) use ends::{Ends, Particles, Span};
 pub(crate) use engine::{Run, Two};
 
 use crate::chunked::Parts;
@@ -113,14 +117,14 @@ impl Drawn<'_> {
     unsafe fn draw(self, pairs: &[Pair], z: &mut [f64]) {
         let Drawn { noise, id } = self;
         // SAFETY: the caller's contract.
-        let key = |k: usize| unsafe { (id.get(pairs[k].i), id.get(pairs[k].j)) };
+        let key = |k: usize| unsafe { id.get_two(pairs[k].i, pairs[k].j) };
         pair_normals(noise.seed, noise.step, noise.stream, key, z);
     }
 }
 
 impl<'a> Noise<'a> {
     /// This noise for the pairs of a table with index bound `bound`.
-    pub(crate) fn of(self, bound: Bound) -> Drawn<'a> {
+    fn of(self, bound: Bound) -> Drawn<'a> {
         Drawn {
             noise: self,
             id: bound.read(self.id),
@@ -166,29 +170,24 @@ impl Virial for Tensor {
 
 impl PairTable {
     /// The bound on the pairs' indices, for indexing per-particle arrays by them.
-    pub(crate) fn bound(&self) -> Bound {
+    fn bound(&self) -> Bound {
         Bound(self.particles)
-    }
-
-    /// [`Bound::read`] for this table.
-    pub(crate) fn read<'a, T: Copy>(&self, data: &'a [T]) -> ByPair<'a, T> {
-        self.bound().read(data)
     }
 }
 
 /// A bound on the particle indices of a pair table: the particle count of its fill.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Bound(usize);
+struct Bound(usize);
 
 impl Bound {
     /// The bound of a table filled from positions `q` (its indices are below `q.len()`).
-    pub(crate) fn of(q: &[Vec3]) -> Self {
+    fn of(q: &[Vec3]) -> Self {
         Bound(q.len())
     }
 
     /// `data`, one entry per particle, for reading by the pairs' indices without a bounds
     /// check per pair. Panics unless it has an entry for every index below the bound.
-    pub(crate) fn read<T: Copy>(self, data: &[T]) -> ByPair<'_, T> {
+    fn read<T: Copy>(self, data: &[T]) -> ByPair<'_, T> {
         self.check(data.len());
         ByPair(data)
     }
@@ -210,31 +209,23 @@ impl Bound {
     }
 }
 
-/// A per-particle slice with an entry for every index of a pair table ([`Bound::read`]).
+/// A per-particle slice with an entry for every index of a pair table ([`Bound::read`]): the
+/// ids by which the engine draws the pairs' noise.
 #[derive(Clone, Copy)]
-pub(crate) struct ByPair<'a, T>(&'a [T]);
+struct ByPair<'a, T>(&'a [T]);
 
 impl<T: Copy> ByPair<'_, T> {
-    /// The entry of particle `i`, without a bounds check (checked, these reads made VV's and
-    /// ABOBA's steps 3 % more instructions).
-    ///
-    /// # Safety
-    /// `i` is an index of a pair of the table (or fill) whose bound made this
-    /// ([`Bound::read`]): such an index is below the bound, and the slice has an entry for each.
-    #[inline(always)]
-    pub(crate) unsafe fn get(self, i: u32) -> T {
-        debug_assert!((i as usize) < self.0.len());
-        // SAFETY: in bounds, the caller's contract.
-        unsafe { *self.0.get_unchecked(i as usize) }
-    }
-
     /// The entries of particles `i` and `j`, without bounds checks.
     ///
     /// # Safety
-    /// As for [`ByPair::get`], for `i` and `j`.
+    /// `i` and `j` are the indices of a pair of the table (or fill) whose bound made this
+    /// ([`Bound::read`]): such indices are below the bound, and the slice has an entry for
+    /// each.
     #[inline(always)]
-    pub(crate) unsafe fn get_two(self, i: u32, j: u32) -> (T, T) {
-        // SAFETY: the caller's contract.
-        unsafe { (self.get(i), self.get(j)) }
+    unsafe fn get_two(self, i: u32, j: u32) -> (T, T) {
+        let (i, j) = (i as usize, j as usize);
+        debug_assert!(i < self.0.len() && j < self.0.len());
+        // SAFETY: in bounds, the caller's contract.
+        unsafe { (*self.0.get_unchecked(i), *self.0.get_unchecked(j)) }
     }
 }

@@ -2,7 +2,7 @@
 
 use super::System;
 use crate::force::{self, Full, FullInputs};
-use crate::pairs::{Bound, Run};
+use crate::pairs::{Particles, Run};
 use crate::stamp::Stamp;
 use crate::{Tensor, Vec3};
 
@@ -13,25 +13,20 @@ impl System {
         }
         if !self.fills_plainly() {
             self.ensure_pairs();
-            force::conservative(
-                &self.pairs,
-                &self.params,
-                &self.kind,
-                &mut self.conservative,
-            );
+            let particles = Particles::new(&self.inv_mass, &self.kind, self.params.repulsion());
+            force::conservative(&self.pairs, particles, &mut self.conservative);
         } else {
             // The forces of each run summed while the run is in cache, in the order of a pass
             // over the table: the same numbers.
             self.prepare_list();
             let out = force::zeroed(&mut self.conservative, self.kind.len());
-            let add = force::Conservative::new(Bound::of(&self.q), &self.params, &self.kind);
+            let particles = Particles::new(&self.inv_mass, &self.kind, self.params.repulsion());
             // A plain loop: through `Run::sweep` (AVX2-compiled, as the full forces are) ABOBA
             // ran 3 % more instructions.
-            // SAFETY: the runs of the fill, whose bound (`Bound::of(q)`) made `add`.
-            let force = |pair: &_, fi: &mut _, fj: &mut _| unsafe { add.pair(pair, fi, fj) };
-            let each = |run: Run<Vec3>| run.for_each(force);
+            let each = |run: Run<Vec3, ()>| run.for_each(force::add_conservative);
+            let (list, q, bx, params) = (&self.list, &self.q, &self.bx, &self.params);
             self.pairs
-                .collect_then(&self.list, &self.q, &self.bx, &self.params, out, each);
+                .collect_then(list, q, bx, params, None, particles, out, each);
             self.pairs_filled();
         }
         self.conservative_at = Stamp::at(self.positions);
@@ -46,7 +41,7 @@ impl System {
         }
         if self.fills_plainly() {
             self.prepare_list();
-            force::full_while_filling(self.full_inputs(true, stream));
+            force::full_while_filling(self.full_inputs(stream));
             self.full_virial = None;
             self.pairs_filled();
         } else {
@@ -72,24 +67,21 @@ impl System {
     fn full_from_table(&mut self, stream: u8) -> Option<Tensor> {
         match (self.shifted_pairs(), self.impulses.is_some()) {
             (false, false) => {
-                force::full::<false, ()>(self.full_inputs(false, stream));
+                force::full::<false, ()>(self.full_inputs(stream));
                 None
             }
             (true, false) => {
-                force::full::<true, ()>(self.full_inputs(false, stream));
+                force::full::<true, ()>(self.full_inputs(stream));
                 None
             }
-            (false, true) => Some(force::full::<false, Tensor>(
-                self.full_inputs(false, stream),
-            )),
-            (true, true) => Some(force::full::<true, Tensor>(self.full_inputs(false, stream))),
+            (false, true) => Some(force::full::<false, Tensor>(self.full_inputs(stream))),
+            (true, true) => Some(force::full::<true, Tensor>(self.full_inputs(stream))),
         }
     }
 
     /// The system taken apart for a full-force evaluation with the noise of `stream` in the
-    /// current step, the totals indexed by the bound of the table as it is, or, when `refill`,
-    /// as a fill from the current positions will make it.
-    fn full_inputs(&mut self, refill: bool, stream: u8) -> FullInputs<'_> {
+    /// current step.
+    fn full_inputs(&mut self, stream: u8) -> FullInputs<'_> {
         let System {
             ref mut pairs,
             ref list,
@@ -106,8 +98,7 @@ impl System {
             dt,
             ..
         } = *self;
-        let bound = if refill { Bound::of(q) } else { pairs.bound() };
-        let add = Full::new(bound, params, dt, (p, inv_mass, kind));
+        let add = Full::new(params, dt);
         let noise = add.noise(seed, step, stream, id);
         FullInputs {
             pairs,
@@ -115,6 +106,7 @@ impl System {
             q,
             bx,
             params,
+            particles: Particles::new(inv_mass, kind, params.repulsion()).with_momenta(p),
             full,
             add,
             noise,
@@ -126,6 +118,7 @@ impl System {
 mod tests {
     use crate::force::conservative;
     use crate::init::equilibrium_box;
+    use crate::pairs::Particles;
     use crate::params::Params;
     use crate::reference::VelocityVerlet;
 
@@ -151,7 +144,8 @@ mod tests {
                 sys.ensure_full(1);
                 let filled_f = sys.full.clone();
                 let mut pass = Vec::new();
-                conservative(&sys.pairs, &sys.params, &sys.kind, &mut pass);
+                let particles = Particles::new(&sys.inv_mass, &sys.kind, sys.params.repulsion());
+                conservative(&sys.pairs, particles, &mut pass);
                 assert_eq!(pass, filled_c, "conservative, {threads} threads");
                 sys.full_from_table(1);
                 assert_eq!(sys.full, filled_f, "full, {threads} threads");
