@@ -1,5 +1,5 @@
 //! `dpd predict` and `dpd orderings --rank predicted`: the JSON they print, the known answers
-//! of the harmonic model and bad input (`dpd design --objective predicted` searches with
+//! of the harmonic model, the anharmonic correction's place and bad input (`dpd design --objective predicted` searches with
 //! `dpd_predict::design`, tested there).
 mod cli_support;
 
@@ -28,8 +28,16 @@ fn aboba_is_exact_on_the_modes_and_obab_is_not() {
     ));
     has_keys(
         &v,
-        &["spectrum_particles", "modes", "max_omega2", "schemes"],
+        &[
+            "spectrum_particles",
+            "modes",
+            "max_omega2",
+            "response",
+            "schemes",
+        ],
     );
+    let r = v["response"]["r"].as_f64().unwrap();
+    assert!(r.is_finite() && r != 0.0, "response {r}");
     let schemes = v["schemes"].as_array().unwrap();
     for s in schemes {
         has_keys(
@@ -43,28 +51,33 @@ fn aboba_is_exact_on_the_modes_and_obab_is_not() {
             ],
         );
     }
-    let tc = |s: usize, row: usize| {
-        schemes[s]["rows"][row]["configurational_temperature"]
-            .as_f64()
-            .unwrap()
-    };
-    // ABOBA samples positions exactly on any harmonic mode; OBAB's T_C error is positive
-    // and grows with dt.
-    assert!(tc(0, 1).abs() < 1e-9, "aboba {}", tc(0, 1));
+    let field = |s: usize, row: usize, key: &str| schemes[s]["rows"][row][key].as_f64().unwrap();
+    let tc = |s: usize, row: usize| field(s, row, "configurational_temperature");
+    // ABOBA samples positions exactly on any harmonic mode: its T_C error is the anharmonic
+    // correction alone, which grows with dt; OBAB's T_C error is positive and grows with dt.
+    let correction = |row: usize| field(0, row, "anharmonic_correction");
+    assert!(
+        (tc(0, 1) - correction(1)).abs() < 1e-9,
+        "aboba {} {}",
+        tc(0, 1),
+        correction(1)
+    );
+    assert!(correction(1).abs() > correction(0).abs() && correction(0) != 0.0);
     assert!(
         tc(1, 0) > 0.01 && tc(1, 1) > tc(1, 0),
         "OBAB {} {}",
         tc(1, 0),
         tc(1, 1)
     );
-    // ABOBA's critical step is its stability limit, 2 / omega_max.
+    // ABOBA's stability limit is 2 / omega_max, and its critical step is at most that.
     let limit = schemes[0]["stability_limit"].as_f64().unwrap();
     let omega_max = v["max_omega2"].as_f64().unwrap().sqrt();
     assert!(
         (limit * omega_max - 2.0).abs() < 1e-3,
         "{limit} {omega_max}"
     );
-    assert_eq!(schemes[0]["critical_dt_10"]["status"], "stability_limit");
+    let critical = schemes[0]["critical_dt_10"]["dt"].as_f64().unwrap();
+    assert!(critical <= limit, "{critical} {limit}");
 }
 
 #[test]

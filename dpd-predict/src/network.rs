@@ -57,16 +57,14 @@ fn invalid(
     }
 }
 
-/// The spectrum of the pair network of one configuration: positions `q` in a periodic box of
-/// edges `edges`, particle masses `masses`.
-pub fn spectrum(
+/// Refuses a configuration or pair model the network cannot be built from.
+pub(crate) fn check(
     q: &[[f64; 3]],
     masses: &[f64],
     edges: [f64; 3],
     model: PairModel,
-) -> Result<Spectrum, NetworkError> {
-    let n = q.len();
-    if masses.len() != n {
+) -> Result<(), NetworkError> {
+    if masses.len() != q.len() {
         return Err(invalid(
             "masses",
             masses.len(),
@@ -100,31 +98,53 @@ pub fn spectrum(
             "needs finite values, r_c > 0, k_B T > 0 and gamma >= 0",
         ));
     }
-    let mut k = DMatrix::<f64>::zeros(3 * n, 3 * n);
-    let mut g = DMatrix::<f64>::zeros(3 * n, 3 * n);
-    let stiffness = model.a / model.rc;
-    for i in 0..n {
-        for j in i + 1..n {
+    Ok(())
+}
+
+/// The pairs `(i, j, e_ij, r_ij)` of `q` closer than `rc` (minimum image, `i < j`, coincident
+/// particles left out), `e_ij` the unit vector from j to i.
+pub(crate) fn pairs(
+    q: &[[f64; 3]],
+    edges: [f64; 3],
+    rc: f64,
+) -> impl Iterator<Item = (usize, usize, [f64; 3], f64)> + '_ {
+    let n = q.len();
+    (0..n)
+        .flat_map(move |i| (i + 1..n).map(move |j| (i, j)))
+        .filter_map(move |(i, j)| {
             let mut d = [0.0; 3];
             for c in 0..3 {
                 let x = q[i][c] - q[j][c];
                 d[c] = x - edges[c] * (x / edges[c]).round();
             }
             let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-            if r >= model.rc || r == 0.0 {
-                continue;
-            }
-            let wd = (1.0 - r / model.rc).powf(model.weight_exponent);
-            let e = d.map(|x| x / r);
-            let scale = 1.0 / (masses[i] * masses[j]).sqrt();
-            for a in 0..3 {
-                for b in 0..3 {
-                    let ee = e[a] * e[b];
-                    for (u, v, sign) in [(i, i, 1.0), (j, j, 1.0), (i, j, -1.0), (j, i, -1.0)] {
-                        let mass = if u == v { 1.0 / masses[u] } else { scale };
-                        k[(3 * u + a, 3 * v + b)] += sign * mass * stiffness * ee;
-                        g[(3 * u + a, 3 * v + b)] += sign * mass * model.gamma * wd * ee;
-                    }
+            (r < rc && r > 0.0).then(|| (i, j, d.map(|x| x / r), r))
+        })
+}
+
+/// The spectrum of the pair network of one configuration: positions `q` in a periodic box of
+/// edges `edges`, particle masses `masses`.
+pub fn spectrum(
+    q: &[[f64; 3]],
+    masses: &[f64],
+    edges: [f64; 3],
+    model: PairModel,
+) -> Result<Spectrum, NetworkError> {
+    check(q, masses, edges, model)?;
+    let n = q.len();
+    let mut k = DMatrix::<f64>::zeros(3 * n, 3 * n);
+    let mut g = DMatrix::<f64>::zeros(3 * n, 3 * n);
+    let stiffness = model.a / model.rc;
+    for (i, j, e, r) in pairs(q, edges, model.rc) {
+        let wd = (1.0 - r / model.rc).powf(model.weight_exponent);
+        let scale = 1.0 / (masses[i] * masses[j]).sqrt();
+        for a in 0..3 {
+            for b in 0..3 {
+                let ee = e[a] * e[b];
+                for (u, v, sign) in [(i, i, 1.0), (j, j, 1.0), (i, j, -1.0), (j, i, -1.0)] {
+                    let mass = if u == v { 1.0 / masses[u] } else { scale };
+                    k[(3 * u + a, 3 * v + b)] += sign * mass * stiffness * ee;
+                    g[(3 * u + a, 3 * v + b)] += sign * mass * model.gamma * wd * ee;
                 }
             }
         }
@@ -150,6 +170,7 @@ pub fn spectrum(
         particles: n,
         volume,
         kbt: model.kbt,
+        response: None,
     })
 }
 

@@ -1,12 +1,15 @@
 //! A program's predicted errors on a spectrum, its stability limit and critical steps.
 
+use crate::anharmonic;
 use crate::spectrum::{Spectrum, Weighted};
 use crate::stationary::{stationary_covariance, Stationary};
 use crate::step_map::{StepMap, StepMapError};
 use dpd_ir::Program;
 use serde::Serialize;
 
-/// The errors a program makes at one dt, exact for the harmonic modes of the spectrum.
+/// The errors a program makes at one dt, exact for the harmonic modes of the spectrum, T_C's
+/// with the leading anharmonic correction when the spectrum has a response
+/// ([`crate::anharmonic`]).
 ///
 /// With `ex_k = omega2_k <x_k^2> / k_B T - 1` and `ep_k = <p_k^2> / k_B T - 1` the relative
 /// errors of mode k's configurational and kinetic variances: T_C = `<|F|^2> / <lap U>` of the
@@ -19,6 +22,9 @@ use serde::Serialize;
 pub struct Errors {
     /// (T_C - k_B T) / k_B T.
     pub configurational_temperature: f64,
+    /// The anharmonic correction included in `configurational_temperature` (0 without a
+    /// response).
+    pub anharmonic_correction: f64,
     /// (T_K - k_B T) / k_B T.
     pub kinetic_temperature: f64,
     /// Shift of the potential energy per particle, in energy units.
@@ -86,6 +92,7 @@ pub struct Predictor {
     particles: f64,
     volume: f64,
     kbt: f64,
+    response: Option<f64>,
 }
 
 impl Predictor {
@@ -95,6 +102,7 @@ impl Predictor {
             particles: spectrum.particles.max(1) as f64,
             volume: spectrum.volume,
             kbt: spectrum.kbt,
+            response: spectrum.response.map(|r| r.r),
         }
     }
 
@@ -106,14 +114,20 @@ impl Predictor {
     /// The errors of `program` at `dt`; `Ok(None)` when a mode has no stationary state.
     pub fn errors(&self, program: &Program, dt: f64) -> Result<Option<Errors>, StepMapError> {
         let kbt = self.kbt;
-        let (mut modes, mut sum_w2, mut sum_w2_ex, mut sum_ex, mut sum_ep) =
-            (0.0, 0.0, 0.0, 0.0, 0.0);
+        let (mut modes, mut sum_w2, mut sum_w2_ex, mut sum_ex, mut sum_ep, mut sum_slope) =
+            (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
         for &Weighted { mode, weight } in &self.modes {
-            let map = StepMap::new(program, mode, dt, kbt)?;
+            let (map, points) = StepMap::traced(program, mode, dt, kbt)?;
             let c = match stationary_covariance(&map) {
                 Stationary::Covariance(c) => c,
                 Stationary::Unstable { .. } => return Ok(None),
             };
+            if self.response.is_some() {
+                match anharmonic::weight_slope(program, mode, dt, kbt, &c, &points)? {
+                    Some(slope) => sum_slope += weight * slope,
+                    None => return Ok(None),
+                }
+            }
             let ex = mode.omega2 * c[(0, 0)] / kbt - 1.0;
             let ep = c[(1, 1)] / kbt - 1.0;
             modes += weight;
@@ -124,12 +138,16 @@ impl Predictor {
         }
         let n = self.particles;
         let ep_mean = if modes > 0.0 { sum_ep / modes } else { 0.0 };
+        let (harmonic, anharmonic) = match (sum_w2 > 0.0, self.response) {
+            (false, _) => (0.0, 0.0),
+            (true, r) => (
+                sum_w2_ex / sum_w2,
+                r.map_or(0.0, |r| r * sum_slope / sum_w2),
+            ),
+        };
         Ok(Some(Errors {
-            configurational_temperature: if sum_w2 > 0.0 {
-                sum_w2_ex / sum_w2
-            } else {
-                0.0
-            },
+            configurational_temperature: harmonic + anharmonic,
+            anharmonic_correction: anharmonic,
             kinetic_temperature: ep_mean,
             potential_energy: kbt * sum_ex / (2.0 * n),
             pressure: kbt / self.volume * (n * ep_mean - sum_ex / 3.0),

@@ -1,5 +1,6 @@
 //! The harmonic modes a prediction is weighted over.
 
+use crate::anharmonic::Response;
 use serde::{Deserialize, Serialize};
 
 /// A harmonic mode in mass-weighted coordinates: `omega2` the squared frequency (the
@@ -33,6 +34,9 @@ pub struct Spectrum {
     pub volume: f64,
     /// k_B T.
     pub kbt: f64,
+    /// How T_C responds to the spectrum's growth with the pairs inside the cut-off
+    /// ([`crate::anharmonic`]); without it the predictions are harmonic.
+    pub response: Option<Response>,
 }
 
 impl Spectrum {
@@ -44,6 +48,7 @@ impl Spectrum {
             particles: 1,
             volume: 1.0,
             kbt,
+            response: None,
         }
     }
 

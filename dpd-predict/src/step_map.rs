@@ -23,6 +23,28 @@ pub struct StepMap {
     pub g: Vec<Vector3<f64>>,
 }
 
+/// A point of the step where the conservative force is evaluated: the state there is
+/// `m z + g xi` (`z` the state at the step's start), and the kicks that use the evaluation
+/// move momenta by `kick` times the force (B: its step, T: its relaxation time, F: its step).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ForcePoint {
+    pub kick: f64,
+    pub m: Matrix3<f64>,
+    pub g: Vec<Vector3<f64>>,
+}
+
+impl ForcePoint {
+    /// The covariance of the state at this point when the step starts from covariance `c`.
+    pub fn covariance(&self, c: &Matrix3<f64>) -> Matrix3<f64> {
+        self.m * c * self.m.transpose()
+            + self
+                .g
+                .iter()
+                .map(|col| col * col.transpose())
+                .sum::<Matrix3<f64>>()
+    }
+}
+
 /// Why a program has no linear step map.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum StepMapError {
@@ -38,6 +60,16 @@ impl StepMap {
     /// The step of `program` at `dt` on `mode` at temperature `kbt` (algorithms.md section
     /// 2, each pair update read as the mode's own update).
     pub fn new(program: &Program, mode: Mode, dt: f64, kbt: f64) -> Result<Self, StepMapError> {
+        Self::traced(program, mode, dt, kbt).map(|(map, _)| map)
+    }
+
+    /// The step, with the points where it evaluates the conservative force.
+    pub fn traced(
+        program: &Program,
+        mode: Mode,
+        dt: f64,
+        kbt: f64,
+    ) -> Result<(Self, Vec<ForcePoint>), StepMapError> {
         if !(dt.is_finite() && dt > 0.0) {
             return Err(StepMapError::Dt(dt));
         }
@@ -66,6 +98,14 @@ impl StepMap {
             Matrix3::from_diagonal(&Vector3::new(1.0, 1.0, 0.0))
         };
         let mut g = vec![Vector3::zeros(); streams];
+        let mut points = Vec::new();
+        // Where the cache was evaluated: a cache carried into the step was evaluated at the
+        // step's starting positions (no drift since).
+        let mut cache_at = ForcePoint {
+            kick: 0.0,
+            m,
+            g: g.clone(),
+        };
         for stage in &program.stages {
             let h = stage.coeff.value * dt;
             let k = usize::from(stage.stream);
@@ -78,10 +118,17 @@ impl StepMap {
                         None,
                     )
                 }
-                Flow::B => (
-                    Matrix3::new(1.0, 0.0, 0.0, -h * w2, 1.0, 0.0, 0.0, 0.0, 1.0),
-                    None,
-                ),
+                Flow::B => {
+                    points.push(ForcePoint {
+                        kick: h,
+                        m,
+                        g: g.clone(),
+                    });
+                    (
+                        Matrix3::new(1.0, 0.0, 0.0, -h * w2, 1.0, 0.0, 0.0, 0.0, 1.0),
+                        None,
+                    )
+                }
                 Flow::O => {
                     let (c, d) = ou(gamma, h, kbt);
                     (
@@ -102,6 +149,11 @@ impl StepMap {
                     // Relaxation towards the force: p <- c p - omega2 x (1 - c) / gamma.
                     let (c, d) = ou(gamma, h, kbt);
                     let lag = relaxed_time(gamma, h);
+                    points.push(ForcePoint {
+                        kick: lag,
+                        m,
+                        g: g.clone(),
+                    });
                     (
                         Matrix3::new(1.0, 0.0, 0.0, -w2 * lag, c, 0.0, 0.0, 0.0, 1.0),
                         Some(d),
@@ -109,6 +161,11 @@ impl StepMap {
                 }
                 Flow::F => {
                     if !valid {
+                        cache_at = ForcePoint {
+                            kick: 0.0,
+                            m,
+                            g: g.clone(),
+                        };
                         // Evaluate: f <- -omega2 x - gamma p + sqrt(2 gamma kbt / dt) zeta.
                         let eval = Matrix3::new(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, -w2, -gamma, 0.0);
                         m = eval * m;
@@ -116,6 +173,10 @@ impl StepMap {
                         g[k].z += (2.0 * gamma * kbt / dt).sqrt();
                         valid = true;
                     }
+                    points.push(ForcePoint {
+                        kick: h,
+                        ..cache_at.clone()
+                    });
                     (
                         Matrix3::new(1.0, 0.0, 0.0, 0.0, 1.0, h, 0.0, 0.0, 1.0),
                         None,
@@ -128,7 +189,7 @@ impl StepMap {
                 g[k].y += d;
             }
         }
-        Ok(StepMap { m, g })
+        Ok((StepMap { m, g }, points))
     }
 
     /// Covariance of the step's noise, `G G^T`.

@@ -153,6 +153,7 @@ fn grouped_modes_predict_what_all_modes_do() {
         particles: 256,
         volume: 256.0 / 3.0,
         kbt: 1.0,
+        response: None,
     };
     let grouped = Predictor::new(&spectrum);
     assert!(grouped.groups() < 60, "{} groups", grouped.groups());

@@ -6,6 +6,7 @@ use super::{bad_input, print_json};
 use dpd::metropolis::Metropolis;
 use dpd::schemes::registry::resolve;
 use dpd_measure::{Overrides, Scene};
+use dpd_predict::anharmonic;
 use dpd_predict::network::{self, PairModel};
 use dpd_predict::{Critical, Prediction, Predictor, Spectrum};
 use serde::Serialize;
@@ -96,6 +97,10 @@ const SPECTRUM_PARTICLES: std::ops::RangeInclusive<usize> = 64..=1000;
 /// Monte Carlo sweeps from uniform positions to the configuration of the spectrum.
 const EQUILIBRATION_SWEEPS: u64 = 200;
 
+/// Configurations the anharmonic response is measured on, and Monte Carlo sweeps between them.
+const RESPONSE_SAMPLES: usize = 800;
+const RESPONSE_SWEEPS: usize = 2;
+
 /// The JSON of `dpd predict`.
 #[derive(Debug, Serialize)]
 struct Output {
@@ -105,6 +110,8 @@ struct Output {
     /// Groups of similar modes solved for (`Spectrum::grouped`).
     groups: usize,
     max_omega2: f64,
+    /// How T_C responds to the pairs inside the cut-off (the anharmonic correction's factor).
+    response: Option<anharmonic::Response>,
     spectrum_seconds: f64,
     gamma: f64,
     schemes: Vec<SchemeOutput>,
@@ -165,6 +172,7 @@ pub fn main(args: Args) -> ExitCode {
         modes: spectrum.modes.len(),
         groups: predictor.groups(),
         max_omega2: spectrum.max_omega2(),
+        response: spectrum.response,
         spectrum_seconds,
         gamma,
         schemes,
@@ -199,8 +207,13 @@ fn scene_spectrum(scene: &Scene, particles: usize) -> Result<Spectrum, String> {
     let mut mc = Metropolis::new(params, bx, &q, vec![0; particles], scene.seed)
         .map_err(|e| e.to_string())?;
     mc.equilibrate(EQUILIBRATION_SWEEPS);
-    let q: Vec<[f64; 3]> = mc.positions().iter().map(|x| [x.x, x.y, x.z]).collect();
+    let positions = |mc: &Metropolis| -> Vec<[f64; 3]> {
+        mc.positions().iter().map(|x| [x.x, x.y, x.z]).collect()
+    };
+    let q = positions(&mc);
     let l = bx.lengths();
+    let edges = [l.x, l.y, l.z];
+    let masses = vec![scene.mass; particles];
     let model = PairModel {
         a: scene.a,
         rc: 1.0,
@@ -208,8 +221,16 @@ fn scene_spectrum(scene: &Scene, particles: usize) -> Result<Spectrum, String> {
         weight_exponent: scene.weight_exponent,
         kbt: scene.kbt,
     };
-    network::spectrum(&q, &vec![scene.mass; particles], [l.x, l.y, l.z], model)
-        .map_err(|e| e.to_string())
+    let mut spectrum = network::spectrum(&q, &masses, edges, model).map_err(|e| e.to_string())?;
+    let configs: Vec<Vec<[f64; 3]>> = (0..RESPONSE_SAMPLES)
+        .map(|_| {
+            (0..RESPONSE_SWEEPS).for_each(|_| mc.sweep());
+            positions(&mc)
+        })
+        .collect();
+    spectrum.response =
+        Some(anharmonic::response(&configs, &masses, edges, model).map_err(|e| e.to_string())?);
+    Ok(spectrum)
 }
 
 fn print_text(out: &Output) {
@@ -223,6 +244,14 @@ fn print_text(out: &Output) {
         out.gamma,
         out.spectrum_seconds
     );
+    if let Some(r) = out.response {
+        outln!(
+            "# anharmonic response R = {:.1} +- {:.1} ({} configurations)",
+            r.r,
+            r.std_error,
+            r.samples
+        );
+    }
     for s in &out.schemes {
         outln!("\n{} = {}", s.scheme, s.program);
         outln!(
