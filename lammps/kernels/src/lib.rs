@@ -3,37 +3,34 @@
 //! pair weights and pair noise are those of `dpd run`.
 //!
 //! The plugin hands a sweep a list of `(i, j)` pairs, indices into LAMMPS's per-atom arrays
-//! (owned atoms and ghost copies), and the arrays as LAMMPS stores them: positions and
-//! velocities as `3 * n` contiguous doubles (`atom->x[0]`, `atom->v[0]`), inverse masses and
-//! tags (global atom ids) per atom. The pairs are applied one after the other in the given
-//! order (or reversed), each to the current velocities of both atoms, as in dpd-core's sweeps
-//! (algorithms.md section 2): `u = e_ij . (v_i - v_j)`, `impulse = slope u + offset`,
-//! `v_i += impulse e_ij / m_i`, `v_j -= impulse e_ij / m_j`. Pairs at `r >= r_c` are skipped.
-//! The T sweep includes the pair's conservative force, that of the plugin's pair style
-//! `dpd/soft` ([`soft::SoftStyle`]), in its exact update.
-//! The normal of a pair is dpd-core's Philox pair normal keyed by
+//! (owned atoms and ghost copies), and the arrays as LAMMPS stores them ([`Atoms`]). The pairs
+//! are applied one after the other in the given order (or reversed), each to the current
+//! velocities of both atoms, as in dpd-core's sweeps (algorithms.md section 2): `u = e_ij .
+//! (v_i - v_j)`, `impulse = slope u + offset`, `v_i += impulse e_ij / m_i`, `v_j -= impulse
+//! e_ij / m_j`. Friction and cutoff are per pair of atom types, as `pair dpd`'s are: a pair of
+//! types `(I, J)` has `gamma_IJ`, `sigma_IJ^2 = 2 gamma_IJ k_B T` and weights `w_D = w_R^2 =
+//! (1 - r/r_c,IJ)^s`; pairs at `r >= r_c,IJ` are skipped. The T sweep includes the pair's
+//! conservative force, that of the plugin's pair style `dpd/soft` ([`soft::SoftStyle`]), in
+//! its exact update. The normal of a pair is dpd-core's Philox pair normal keyed by
 //! `(seed, step, stream, min(tag), max(tag))`, so each pair gets the same numbers whatever the
 //! decomposition of the box over ranks.
 //!
 //! Licensed MIT (not MIT OR Apache-2.0 like the rest of the workspace): it is linked into a
 //! plugin of LAMMPS, which is GPLv2, and MIT is compatible with it.
 
+pub mod abi;
+pub mod atoms;
 pub mod soft;
 
+pub use atoms::{Atoms, Tags};
 use dpd_core::flow::{bbk_update, ou_update, trotter_update, Change};
 use dpd_core::force::full_pair_force;
 use dpd_core::rng::pair_normal;
 use dpd_core::Params;
 use soft::SoftStyle;
-use std::ffi::{c_char, c_int};
+use std::ffi::c_int;
 
-/// The sweep parameters of one fix: `gamma`, `k_B T`, cutoff and weight exponent, validated
-/// by dpd-core ([`Params`]).
-pub struct Kernels {
-    params: Params,
-}
-
-/// Which pairwise sweep [`dpd_lammps_sweep`] applies.
+/// Which pairwise sweep [`Kernels::sweep`] applies.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SweepFlow {
@@ -45,72 +42,159 @@ pub enum SweepFlow {
     Trotter = 2,
 }
 
-/// The conservative force a T sweep includes: the `dpd/soft` coefficients and the atoms' types
-/// (`n` values, LAMMPS's `atom->type`).
-pub struct Conservative<'a> {
-    pub style: SoftStyle<'a>,
-    pub types: &'a [c_int],
-}
-
 /// Status of a call: 0 for success, else what was wrong.
 pub const DPD_LAMMPS_OK: c_int = 0;
 /// A null pointer where an array or handle was required.
 pub const DPD_LAMMPS_NULL: c_int = 1;
 /// A pair index at or beyond the number of atoms given.
 pub const DPD_LAMMPS_INDEX: c_int = 2;
-/// A flow code that is not a [`SweepFlow`].
+/// A flow code that is not a [`SweepFlow`], or a stream outside 0..=255.
 pub const DPD_LAMMPS_FLOW: c_int = 3;
-/// A negative tag (global atom id).
+/// A tag (global atom id) outside `0..=u32::MAX`, or a tag width other than 4 or 8 bytes.
 pub const DPD_LAMMPS_TAG: c_int = 4;
-/// A T sweep without the conservative style, or an atom type outside it.
+/// A T sweep without the conservative style.
 pub const DPD_LAMMPS_STYLE: c_int = 5;
+/// An atom type outside `1..=ntypes`.
+pub const DPD_LAMMPS_TYPE: c_int = 6;
+
+/// The friction and cutoff of one pair of atom types: `gamma`, `sigma = sqrt(2 gamma k_B T)`
+/// and `r_c`, validated by dpd-core ([`Params`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Coefficients {
+    gamma: f64,
+    sigma: f64,
+    rc: f64,
+}
+
+/// A pair within its cutoff: atoms, unit vector `e_ij`, distance, weight `1 - r/r_c` and
+/// coefficients.
+struct Near {
+    i: usize,
+    j: usize,
+    e: [f64; 3],
+    r: f64,
+    w: f64,
+    c: Coefficients,
+}
+
+/// The sweep parameters of one fix: `k_B T`, the weight exponent, and per pair of the
+/// `ntypes` atom types its [`Coefficients`], at `I * (ntypes + 1) + J` (row and column 0
+/// unused, as LAMMPS's type arrays).
+pub struct Kernels {
+    kbt: f64,
+    /// The weight `w_R` of the exponent (the same for every pair).
+    weights: Params,
+    ntypes: usize,
+    pairs: Vec<Coefficients>,
+    /// Whether some pair has friction (else O and Ob do nothing).
+    friction: bool,
+}
+
+/// The conservative force a T sweep includes: the `dpd/soft` coefficients.
+pub type Conservative<'a> = SoftStyle<'a>;
 
 impl Kernels {
-    /// Validated parameters, or dpd-core's message naming the bad field, its value and what
-    /// is allowed.
-    pub fn new(gamma: f64, kbt: f64, rc: f64, exponent: f64) -> Result<Kernels, String> {
-        Params::builder()
-            .gamma(gamma)
-            .kbt(kbt)
-            .rc(rc)
-            .weight_exponent(exponent)
-            .build()
-            .map(|params| Kernels { params })
-            .map_err(|e| e.to_string())
+    /// Validated parameters for `ntypes` types with per type-pair `gamma` and `rc`
+    /// (`(ntypes + 1)^2` values each, symmetric), or dpd-core's message naming the bad field,
+    /// its value and what is allowed, and the type pair.
+    pub fn new(
+        kbt: f64,
+        exponent: f64,
+        ntypes: usize,
+        gamma: &[f64],
+        rc: &[f64],
+    ) -> Result<Kernels, String> {
+        let n = ntypes + 1;
+        if ntypes == 0 || gamma.len() < n * n || rc.len() < n * n {
+            return Err(format!(
+                "ntypes = {ntypes} with {} gamma and {} r_c values: need ntypes >= 1 and \
+                 (ntypes + 1)^2 values each",
+                gamma.len(),
+                rc.len()
+            ));
+        }
+        let mut pairs = vec![
+            Coefficients {
+                gamma: 0.0,
+                sigma: 0.0,
+                rc: 0.0
+            };
+            n * n
+        ];
+        let mut weights = None;
+        for i in 1..n {
+            for j in 1..n {
+                let (k, mirror) = (i * n + j, j * n + i);
+                if gamma[k] != gamma[mirror] || rc[k] != rc[mirror] {
+                    return Err(format!(
+                        "type pair {i} {j}: gamma {} and r_c {} differ from those of {j} {i} \
+                         ({} and {}); they must be symmetric",
+                        gamma[k], rc[k], gamma[mirror], rc[mirror]
+                    ));
+                }
+                let params = Params::builder()
+                    .gamma(gamma[k])
+                    .kbt(kbt)
+                    .rc(rc[k])
+                    .weight_exponent(exponent)
+                    .build()
+                    .map_err(|e| format!("type pair {i} {j}: {e}"))?;
+                pairs[k] = Coefficients {
+                    gamma: params.gamma(),
+                    sigma: params.sigma(),
+                    rc: params.rc(),
+                };
+                weights.get_or_insert(params);
+            }
+        }
+        let friction = pairs.iter().any(|c| c.gamma > 0.0);
+        Ok(Kernels {
+            kbt,
+            weights: weights.expect("ntypes >= 1"),
+            ntypes,
+            pairs,
+            friction,
+        })
     }
 
-    /// The update of a pair at weight `w = 1 - r/r_c` with inverse reduced mass `mu`,
-    /// standard normal `z` and conservative pair force `f` (used by T only).
-    fn change(&self, flow: SweepFlow, h: f64, w: f64, mu: f64, z: f64, f: f64) -> Change {
-        let p = &self.params;
-        let wr = p.w_r(w);
+    /// One type with friction `gamma` and cutoff `rc`.
+    pub fn uniform(gamma: f64, kbt: f64, rc: f64, exponent: f64) -> Result<Kernels, String> {
+        Kernels::new(
+            kbt,
+            exponent,
+            1,
+            &[0.0, 0.0, 0.0, gamma],
+            &[0.0, 0.0, 0.0, rc],
+        )
+    }
+
+    /// The number of atom types.
+    pub fn ntypes(&self) -> usize {
+        self.ntypes
+    }
+
+    /// The coefficients of the pair of atoms `i`, `j` (types checked by [`Atoms::check`]).
+    #[inline(always)]
+    fn coefficients(&self, atoms: &Atoms, i: usize, j: usize) -> Coefficients {
+        self.pairs[atoms.type_of(i) * (self.ntypes + 1) + atoms.type_of(j)]
+    }
+
+    /// The update of the pair `p` with inverse reduced mass `mu`, standard normal `z` and
+    /// conservative pair force `f` (used by T only).
+    fn change(&self, flow: SweepFlow, h: f64, p: &Near, mu: f64, z: f64, f: f64) -> Change {
+        let (c, wr) = (p.c, self.weights.w_r(p.w));
         match flow {
-            SweepFlow::Ou => ou_update(p.gamma(), p.kbt(), h, wr, mu, z),
-            SweepFlow::Bbk => bbk_update(p.gamma(), p.sigma(), h, h.max(0.0).sqrt(), wr, mu, z),
-            SweepFlow::Trotter => trotter_update(p.gamma(), p.kbt(), h, f, wr, mu, z),
+            SweepFlow::Ou => ou_update(c.gamma, self.kbt, h, wr, mu, z),
+            SweepFlow::Bbk => bbk_update(c.gamma, c.sigma, h, h.max(0.0).sqrt(), wr, mu, z),
+            SweepFlow::Trotter => trotter_update(c.gamma, self.kbt, h, f, wr, mu, z),
         }
     }
 
-    /// `DPD_LAMMPS_OK` when every pair index is below `n = inv_mass.len()`, the arrays are
-    /// long enough and the tags non-negative, else the status of what is wrong.
-    fn check(pairs: &[[c_int; 2]], x: &[f64], v: &[f64], inv_mass: &[f64], tag: &[c_int]) -> c_int {
-        let n = inv_mass.len();
-        let bad_index = |k: c_int| usize::try_from(k).map_or(true, |k| k >= n);
-        if pairs.iter().flatten().any(|&k| bad_index(k)) || x.len() < 3 * n || v.len() < 3 * n {
-            DPD_LAMMPS_INDEX
-        } else if tag.len() < n || tag.iter().any(|&t| t < 0) {
-            DPD_LAMMPS_TAG
-        } else {
-            DPD_LAMMPS_OK
-        }
-    }
-
-    /// The unit vector `e_ij`, distance `r` and weight `w = 1 - r/r_c` of the pair `(i, j)` of
-    /// positions `x` when `0 < r < r_c`.
-    fn geometry(&self, x: &[f64], i: usize, j: usize) -> Option<([f64; 3], f64, f64)> {
-        let rc = self.params.rc();
-        let d: [f64; 3] = std::array::from_fn(|k| x[3 * i + k] - x[3 * j + k]);
-        let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    /// The unit vector `e_ij`, distance `r` and weight `w = 1 - r/r_c` of the pair `(i, j)`
+    /// when `0 < r < r_c`.
+    #[inline(always)]
+    fn geometry(atoms: &Atoms, i: usize, j: usize, rc: f64) -> Option<([f64; 3], f64, f64)> {
+        let (d, r2) = atoms.separation(i, j);
         if r2 >= rc * rc || r2 == 0.0 {
             return None;
         }
@@ -119,11 +203,10 @@ impl Kernels {
     }
 
     /// Apply the sweep `flow` of step length `h` to `pairs` in the given order (see the crate
-    /// documentation); `x`, `v` hold `3 n` doubles, `inv_mass` and `tag` `n` values; T needs
-    /// `conservative`, the others ignore it. With `virial`, adds each pair's `r_ij (x) J_ij` to
-    /// it ([`add_virial`]), `J_ij` the impulse on atom i less its conservative part (the pair
-    /// style's virial holds that). Returns a `DPD_LAMMPS_*` status; on an error no velocity
-    /// has changed.
+    /// documentation); `v` holds `3 n` doubles; T needs `conservative`, the others ignore it.
+    /// With `virial`, adds each pair's `r_ij (x) J_ij` to it ([`add_virial`]), `J_ij` the
+    /// impulse on atom i less its conservative part (the pair style's virial holds that).
+    /// Returns a `DPD_LAMMPS_*` status; on an error no velocity has changed.
     #[allow(clippy::too_many_arguments)]
     pub fn sweep(
         &self,
@@ -132,68 +215,80 @@ impl Kernels {
         (seed, step, stream): (u64, u64, u8),
         pairs: &[[c_int; 2]],
         reverse: bool,
-        x: &[f64],
+        atoms: &Atoms,
         v: &mut [f64],
-        inv_mass: &[f64],
-        tag: &[c_int],
         conservative: Option<&Conservative>,
         mut virial: Option<&mut [f64; 6]>,
     ) -> c_int {
-        let status = Self::check(pairs, x, v, inv_mass, tag);
+        let status = atoms.check(pairs, v.len(), self.ntypes);
         if status != DPD_LAMMPS_OK {
             return status;
         }
         let conservative = match (flow, conservative) {
-            (SweepFlow::Trotter, Some(c)) => {
-                // `check` has bounded the indices by the atom count.
-                if pairs
-                    .iter()
-                    .flatten()
-                    .any(|&k| c.style.type_of(c.types, k as usize).is_none())
-                {
-                    return DPD_LAMMPS_STYLE;
-                }
-                Some(c)
-            }
-            (SweepFlow::Trotter, None) => return DPD_LAMMPS_STYLE,
-            _ if self.params.gamma() == 0.0 => return DPD_LAMMPS_OK,
+            // `check` has bounded the types by `ntypes`; the style must cover them.
+            (SweepFlow::Trotter, Some(c)) if c.ntypes() >= self.ntypes => Some(c),
+            (SweepFlow::Trotter, _) => return DPD_LAMMPS_STYLE,
+            _ if !self.friction => return DPD_LAMMPS_OK,
             _ => None,
         };
-        let mut apply = |&[i, j]: &[c_int; 2]| {
+        // In four passes, so that only the last is a chain of dependent updates: the pairs
+        // within their cutoff and their geometry; their normals, several pairs at a time
+        // (dpd-core's `pair_normals`, bitwise its `pair_normal`); their changes, each from its
+        // own geometry and noise; then the velocity updates, one after the other in order.
+        let mut near = Vec::with_capacity(pairs.len());
+        for &[i, j] in pairs {
             let (i, j) = (i as usize, j as usize);
-            let Some((e, r, w)) = self.geometry(x, i, j) else {
-                return;
-            };
-            let (mi, mj) = (inv_mass[i], inv_mass[j]);
-            let z = pair_normal(seed, step, stream, tag[i] as u32, tag[j] as u32);
-            // Every atom's type was checked above.
-            let f =
-                conservative.map_or(0.0, |c| c.style.pair_force(c.types, i, j, r).unwrap_or(0.0));
-            let c = self.change(flow, h, w, mi + mj, z, f);
+            let c = self.coefficients(atoms, i, j);
+            if let Some((e, r, w)) = Self::geometry(atoms, i, j, c.rc) {
+                near.push(Near { i, j, e, r, w, c });
+            }
+        }
+        let mut z = vec![0.0; near.len()];
+        dpd_core::rng::pair_normals(
+            seed,
+            step,
+            stream,
+            |k| (atoms.tag.key(near[k].i), atoms.tag.key(near[k].j)),
+            &mut z,
+        );
+        let changes: Vec<Change> = near
+            .iter()
+            .zip(&z)
+            .map(|(p, &z)| {
+                let f = conservative.map_or(0.0, |s| {
+                    s.pair_force_of_types(atoms.type_of(p.i), atoms.type_of(p.j), p.r)
+                });
+                let mu = atoms.inv_mass[p.i] + atoms.inv_mass[p.j];
+                self.change(flow, h, p, mu, z, f)
+            })
+            .collect();
+        let mut apply = |(p, change): (&Near, &Change)| {
+            let (i, j, e) = (p.i, p.j, p.e);
+            let (mi, mj) = (atoms.inv_mass[i], atoms.inv_mass[j]);
             let u = (0..3)
                 .map(|k| e[k] * (v[3 * i + k] - v[3 * j + k]))
                 .sum::<f64>();
-            let impulse = c.slope * u + c.offset;
+            let impulse = change.slope * u + change.offset;
             for k in 0..3 {
                 v[3 * i + k] += impulse * e[k] * mi;
                 v[3 * j + k] -= impulse * e[k] * mj;
             }
             if let Some(virial) = virial.as_deref_mut() {
-                add_virial(virial, x, i, j, impulse - c.conservative, e);
+                add_virial(virial, atoms, i, j, impulse - change.conservative, e);
             }
         };
         if reverse {
-            pairs.iter().rev().for_each(&mut apply);
+            near.iter().zip(&changes).rev().for_each(&mut apply);
         } else {
-            pairs.iter().for_each(&mut apply);
+            near.iter().zip(&changes).for_each(&mut apply);
         }
         DPD_LAMMPS_OK
     }
 
     /// Add the dissipative and random pair forces of the full DPD force (the F letter, without
     /// its conservative part, which the engine computes) at velocities `v` to `f` (`3 n`
-    /// doubles): `(-gamma w_R^2 u + sigma w_R z / sqrt(dt)) e_ij` on i, the opposite on j,
-    /// with the normals of `key`. With `virial`, adds each pair's `r_ij (x) F_ij` to it
+    /// doubles): `(-gamma_IJ w_R^2 u + sigma_IJ w_R z / sqrt(dt)) e_ij` on i, the opposite on
+    /// j, with the normals of `key`. With `virial`, adds each pair's `r_ij (x) F_ij` to it
     /// ([`add_virial`]). Returns a `DPD_LAMMPS_*` status; on an error `f` is unchanged.
     #[allow(clippy::too_many_arguments)]
     pub fn dissipative_random(
@@ -201,42 +296,41 @@ impl Kernels {
         dt: f64,
         (seed, step, stream): (u64, u64, u8),
         pairs: &[[c_int; 2]],
-        x: &[f64],
+        atoms: &Atoms,
         v: &[f64],
-        inv_mass: &[f64],
-        tag: &[c_int],
         f: &mut [f64],
         mut virial: Option<&mut [f64; 6]>,
     ) -> c_int {
-        let status = Self::check(pairs, x, v, inv_mass, tag);
+        let status = atoms.check(pairs, v.len(), self.ntypes);
         if status != DPD_LAMMPS_OK {
             return status;
         }
-        if f.len() < 3 * inv_mass.len() {
+        if f.len() < 3 * atoms.len() {
             return DPD_LAMMPS_INDEX;
         }
-        let p = &self.params;
-        let noise = p.sigma() / dt.sqrt();
+        let root_dt = dt.sqrt();
         for &[i, j] in pairs {
             let (i, j) = (i as usize, j as usize);
-            let Some((e, _, w)) = self.geometry(x, i, j) else {
+            let c = self.coefficients(atoms, i, j);
+            let Some((e, _, w)) = Self::geometry(atoms, i, j, c.rc) else {
                 continue;
             };
+            let noise = c.sigma / root_dt;
             let z = if noise > 0.0 {
-                pair_normal(seed, step, stream, tag[i] as u32, tag[j] as u32)
+                pair_normal(seed, step, stream, atoms.tag.key(i), atoms.tag.key(j))
             } else {
                 0.0
             };
             let u = (0..3)
                 .map(|k| e[k] * (v[3 * i + k] - v[3 * j + k]))
                 .sum::<f64>();
-            let force = full_pair_force(0.0, p.gamma(), noise, p.w_r(w), u, z);
+            let force = full_pair_force(0.0, c.gamma, noise, self.weights.w_r(w), u, z);
             for k in 0..3 {
                 f[3 * i + k] += force * e[k];
                 f[3 * j + k] -= force * e[k];
             }
             if let Some(virial) = virial.as_deref_mut() {
-                add_virial(virial, x, i, j, force, e);
+                add_virial(virial, atoms, i, j, force, e);
             }
         }
         DPD_LAMMPS_OK
@@ -246,8 +340,15 @@ impl Kernels {
 /// Add the virial of the pair force (or impulse) `magnitude e` on atom i, `-magnitude e` on
 /// atom j, to `virial`: `r_ij (x) magnitude e` with `r_ij = x_i - x_j`, in LAMMPS's order
 /// xx, yy, zz, xy, xz, yz.
-fn add_virial(virial: &mut [f64; 6], x: &[f64], i: usize, j: usize, magnitude: f64, e: [f64; 3]) {
-    let r: [f64; 3] = std::array::from_fn(|k| x[3 * i + k] - x[3 * j + k]);
+fn add_virial(
+    virial: &mut [f64; 6],
+    atoms: &Atoms,
+    i: usize,
+    j: usize,
+    magnitude: f64,
+    e: [f64; 3],
+) {
+    let (r, _) = atoms.separation(i, j);
     for (slot, (a, b)) in [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)]
         .into_iter()
         .enumerate()
@@ -256,280 +357,41 @@ fn add_virial(virial: &mut [f64; 6], x: &[f64], i: usize, j: usize, magnitude: f
     }
 }
 
-/// Create the kernels of one fix from its parameters. On invalid parameters returns null and
-/// writes dpd-core's message (naming the field, its value and what is allowed), truncated and
-/// NUL-terminated, into `message` when it is not null.
-///
-/// # Safety
-/// `message` is null or points to `message_len` writable bytes.
-#[no_mangle]
-pub unsafe extern "C" fn dpd_lammps_new(
-    gamma: f64,
-    kbt: f64,
-    rc: f64,
-    exponent: f64,
-    message: *mut c_char,
-    message_len: usize,
-) -> *mut Kernels {
-    match Kernels::new(gamma, kbt, rc, exponent) {
-        Ok(k) => Box::into_raw(Box::new(k)),
-        Err(text) => {
-            if !message.is_null() && message_len > 0 {
-                let n = text.len().min(message_len - 1);
-                // SAFETY: `message` has `message_len > n` writable bytes (the contract).
-                unsafe {
-                    std::ptr::copy_nonoverlapping(text.as_ptr().cast(), message, n);
-                    *message.add(n) = 0;
-                }
-            }
-            std::ptr::null_mut()
-        }
-    }
-}
-
-/// Free kernels made by [`dpd_lammps_new`]; null is ignored.
-///
-/// # Safety
-/// `kernels` is null or a pointer returned by [`dpd_lammps_new`] not freed before.
-#[no_mangle]
-pub unsafe extern "C" fn dpd_lammps_free(kernels: *mut Kernels) {
-    if !kernels.is_null() {
-        // SAFETY: made by `Box::into_raw` in `dpd_lammps_new`, freed once (the contract).
-        drop(unsafe { Box::from_raw(kernels) });
-    }
-}
-
-/// The read-only arguments shared by the calls: the kernels, the noise key, the pair list,
-/// and per atom the positions (`3 natoms` doubles), inverse masses and tags.
-struct Call<'a> {
-    kernels: &'a Kernels,
-    key: (u64, u64, u8),
-    pairs: &'a [[c_int; 2]],
-    x: &'a [f64],
-    inv_mass: &'a [f64],
-    tag: &'a [c_int],
-}
-
-/// `len` values at `p` as a slice; `None` if `p` is null while `len > 0`.
-///
-/// # Safety
-/// A non-null `p` points to `len` valid values, not written during the call that made the
-/// slice, and the slice is not used beyond that call.
-unsafe fn slice<'a, T>(p: *const T, len: usize) -> Option<&'a [T]> {
-    match (len, p.is_null()) {
-        (0, _) => Some(&[]),
-        (_, true) => None,
-        // SAFETY: the caller's contract.
-        (len, false) => Some(unsafe { std::slice::from_raw_parts(p, len) }),
-    }
-}
-
-/// As [`slice`], writable.
-///
-/// # Safety
-/// As for [`slice`], and no other slice of the call overlaps it.
-unsafe fn slice_mut<'a, T>(p: *mut T, len: usize) -> Option<&'a mut [T]> {
-    match (len, p.is_null()) {
-        (0, _) => Some(&mut []),
-        (_, true) => None,
-        // SAFETY: the caller's contract.
-        (len, false) => Some(unsafe { std::slice::from_raw_parts_mut(p, len) }),
-    }
-}
-
-/// The optional virial accumulator of a call: null for none, else 6 writable doubles.
-///
-/// # Safety
-/// A non-null `virial` points to 6 writable doubles overlapping no other array of the call.
-unsafe fn virial_of<'a>(virial: *mut f64) -> Option<&'a mut [f64; 6]> {
-    // SAFETY: the caller's contract.
-    unsafe { virial.cast::<[f64; 6]>().as_mut() }
-}
-
-impl<'a> Call<'a> {
-    /// The shared arguments of a call, or the status of what is wrong: `DPD_LAMMPS_FLOW` for a
-    /// stream outside 0..=255, `DPD_LAMMPS_NULL` for a null pointer where values are needed.
-    ///
-    /// # Safety
-    /// `kernels` is null or comes from [`dpd_lammps_new`]; `pairs` points to `2 npairs` ints,
-    /// `x` to `3 natoms` doubles, `inv_mass` to `natoms` doubles and `tag` to `natoms` ints
-    /// (each may be null when its length is 0), none written during the call.
-    unsafe fn new(
-        kernels: *const Kernels,
-        (seed, step, stream): (u64, u64, c_int),
-        (npairs, pairs): (usize, *const c_int),
-        (natoms, x, inv_mass, tag): (usize, *const f64, *const f64, *const c_int),
-    ) -> Result<Call<'a>, c_int> {
-        let stream = u8::try_from(stream).map_err(|_| DPD_LAMMPS_FLOW)?;
-        // SAFETY: the caller's contract; `[c_int; 2]` has the layout of two consecutive ints.
-        let (kernels, pairs, x, inv_mass, tag) = unsafe {
-            (
-                kernels.as_ref(),
-                slice(pairs.cast::<[c_int; 2]>(), npairs),
-                slice(x, 3 * natoms),
-                slice(inv_mass, natoms),
-                slice(tag, natoms),
-            )
-        };
-        match (kernels, pairs, x, inv_mass, tag) {
-            (Some(kernels), Some(pairs), Some(x), Some(inv_mass), Some(tag)) => Ok(Call {
-                kernels,
-                key: (seed, step, stream),
-                pairs,
-                x,
-                inv_mass,
-                tag,
-            }),
-            _ => Err(DPD_LAMMPS_NULL),
-        }
-    }
-}
-
-/// Apply the pairwise sweep `flow` (a [`SweepFlow`] code: 0 = O, 1 = Ob, 2 = T) of step length
-/// `h` to `npairs` pairs (`pairs[2k]`, `pairs[2k + 1]` are the atom indices of pair k), in
-/// order, or last to first when `reverse` is non-zero, with the noise of `(seed, step, stream)`.
-/// T adds the `dpd/soft` force of `ntypes` types with coefficients `a` and cutoffs `rc`
-/// (`(ntypes + 1)^2` doubles each, as in [`soft`]) and atom types `type_` (`natoms` ints); O
-/// and Ob ignore them (null is allowed). `virial` is null, or 6 doubles to which each pair's
-/// `r_ij (x) J_ij` is added (xx, yy, zz, xy, xz, yz; `J_ij` the impulse on atom i less its
-/// conservative part). Returns `DPD_LAMMPS_OK`, or an error status with no velocity changed.
-///
-/// # Safety
-/// `kernels` is null or comes from [`dpd_lammps_new`]; `pairs` points to `2 npairs` ints (may
-/// be null when `npairs == 0`); `x` and `v` to `3 natoms` doubles, `v` writable; `inv_mass` to
-/// `natoms` doubles and `tag` to `natoms` ints; for T, `a`, `rc` and `type_` as said above;
-/// `virial` is null or points to 6 writable doubles; the writable arrays overlap no other.
-/// Indices, tags and types are checked against `natoms` and `ntypes`, not trusted.
-#[no_mangle]
-pub unsafe extern "C" fn dpd_lammps_sweep(
-    kernels: *const Kernels,
-    flow: c_int,
-    h: f64,
-    seed: u64,
-    step: u64,
-    stream: c_int,
-    reverse: c_int,
-    npairs: usize,
-    pairs: *const c_int,
-    natoms: usize,
-    x: *const f64,
-    v: *mut f64,
-    inv_mass: *const f64,
-    tag: *const c_int,
-    ntypes: c_int,
-    a: *const f64,
-    rc: *const f64,
-    type_: *const c_int,
-    virial: *mut f64,
-) -> c_int {
-    let flow = match flow {
-        0 => SweepFlow::Ou,
-        1 => SweepFlow::Bbk,
-        2 => SweepFlow::Trotter,
-        _ => return DPD_LAMMPS_FLOW,
-    };
-    let conservative = match (flow, usize::try_from(ntypes)) {
-        (SweepFlow::Trotter, Ok(ntypes)) => {
-            let table = (ntypes + 1) * (ntypes + 1);
-            // SAFETY: the contract gives each array its length.
-            let arrays = unsafe { (slice(a, table), slice(rc, table), slice(type_, natoms)) };
-            let (Some(a), Some(rc), Some(types)) = arrays else {
-                return DPD_LAMMPS_NULL;
-            };
-            SoftStyle::new(ntypes, a, rc, [1.0; 4]).map(|style| Conservative { style, types })
-        }
-        _ => None,
-    };
-    // SAFETY: the contract.
-    let (call, v, virial) = unsafe {
-        (
-            Call::new(
-                kernels,
-                (seed, step, stream),
-                (npairs, pairs),
-                (natoms, x, inv_mass, tag),
-            ),
-            slice_mut(v, 3 * natoms),
-            virial_of(virial),
-        )
-    };
-    match (call, v) {
-        (Ok(c), Some(v)) => c.kernels.sweep(
-            flow,
-            h,
-            c.key,
-            c.pairs,
-            reverse != 0,
-            c.x,
-            v,
-            c.inv_mass,
-            c.tag,
-            conservative.as_ref(),
-            virial,
-        ),
-        (Err(status), _) => status,
-        (_, None) => DPD_LAMMPS_NULL,
-    }
-}
-
-/// Add the dissipative and random pair forces of the F letter (step `dt`) at velocities `v`
-/// to `f` (`3 natoms` doubles), over `npairs` pairs as in [`dpd_lammps_sweep`], with the
-/// noise of `(seed, step, stream)` ([`Kernels::dissipative_random`]); `virial` as there, with
-/// the pair forces in place of the impulses. Returns `DPD_LAMMPS_OK`, or an error status with
-/// `f` unchanged.
-///
-/// # Safety
-/// As for [`dpd_lammps_sweep`], with `v` read only and `f` pointing to `3 natoms` writable
-/// doubles overlapping none of the other arrays.
-#[no_mangle]
-pub unsafe extern "C" fn dpd_lammps_dissipative_random(
-    kernels: *const Kernels,
-    dt: f64,
-    seed: u64,
-    step: u64,
-    stream: c_int,
-    npairs: usize,
-    pairs: *const c_int,
-    natoms: usize,
-    x: *const f64,
-    v: *const f64,
-    inv_mass: *const f64,
-    tag: *const c_int,
-    f: *mut f64,
-    virial: *mut f64,
-) -> c_int {
-    // SAFETY: the contract.
-    let (call, v, f, virial) = unsafe {
-        (
-            Call::new(
-                kernels,
-                (seed, step, stream),
-                (npairs, pairs),
-                (natoms, x, inv_mass, tag),
-            ),
-            slice(v, 3 * natoms),
-            slice_mut(f, 3 * natoms),
-            virial_of(virial),
-        )
-    };
-    match (call, v, f) {
-        (Ok(c), Some(v), Some(f)) => c
-            .kernels
-            .dissipative_random(dt, c.key, c.pairs, c.x, v, c.inv_mass, c.tag, f, virial),
-        (Err(status), _, _) => status,
-        _ => DPD_LAMMPS_NULL,
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::abi::dpd_lammps_sweep;
+    use std::ffi::c_void;
 
-    /// Two atoms of different masses approaching each other, a third out of range.
-    fn scene() -> (Vec<f64>, Vec<f64>, Vec<f64>, Vec<c_int>) {
-        let x = vec![0.0, 0.0, 0.0, 0.6, 0.2, -0.1, 5.0, 5.0, 5.0];
-        let v = vec![0.5, -0.2, 0.1, -0.7, 0.3, 0.4, 1.0, 1.0, 1.0];
-        (x, v, vec![1.0, 0.5, 1.0], vec![7, 3, 11])
+    /// Two atoms of different masses approaching each other, a third out of range; types 1,
+    /// 1, 1 (or as given).
+    struct Scene {
+        x: Vec<f64>,
+        v: Vec<f64>,
+        inv_mass: Vec<f64>,
+        tag: Vec<i32>,
+        types: Vec<c_int>,
+    }
+
+    fn scene() -> Scene {
+        Scene {
+            x: vec![0.0, 0.0, 0.0, 0.6, 0.2, -0.1, 5.0, 5.0, 5.0],
+            v: vec![0.5, -0.2, 0.1, -0.7, 0.3, 0.4, 1.0, 1.0, 1.0],
+            inv_mass: vec![1.0, 0.5, 1.0],
+            tag: vec![7, 3, 11],
+            types: vec![1, 1, 1],
+        }
+    }
+
+    impl Scene {
+        fn atoms(&self) -> Atoms<'_> {
+            Atoms {
+                x: &self.x,
+                inv_mass: &self.inv_mass,
+                tag: Tags::Small(&self.tag),
+                types: &self.types,
+            }
+        }
     }
 
     fn momentum(v: &[f64], inv_mass: &[f64]) -> [f64; 3] {
@@ -542,43 +404,51 @@ mod tests {
         p
     }
 
+    /// The separation `x_0 - x_1` of the scene, its length and direction.
+    fn pair01() -> ([f64; 3], f64, [f64; 3]) {
+        let d: [f64; 3] = [-0.6, -0.2, 0.1];
+        let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        (d, r, d.map(|c| c / r))
+    }
+
     /// The O update of one pair against its formula from algorithms.md section 2, evaluated
     /// here independently: `u' = u e^{-tau h} + sqrt(kT mu (1 - e^{-2 tau h})) z` along `e` with
     /// `tau = gamma w^2 mu` (s = 2), momentum unchanged, the far atom untouched.
     #[test]
     fn one_pair_gets_the_exact_ou_update_and_momentum_is_kept() {
         let (gamma, kbt, rc, h) = (4.5, 1.3, 1.0, 0.05);
-        let k = Kernels::new(gamma, kbt, rc, 2.0).unwrap();
-        let (x, mut v, inv_mass, tag) = scene();
-        let before = v.clone();
-        let key = (42, 9, 2);
+        let k = Kernels::uniform(gamma, kbt, rc, 2.0).unwrap();
+        let mut s = scene();
+        let before = s.v.clone();
+        let mut v = s.v.clone();
         let mut virial = [0.0; 6];
         let status = k.sweep(
             SweepFlow::Ou,
             h,
-            key,
+            (42, 9, 2),
             &[[0, 1], [0, 2]],
             false,
-            &x,
+            &s.atoms(),
             &mut v,
-            &inv_mass,
-            &tag,
             None,
             Some(&mut virial),
         );
         assert_eq!(status, DPD_LAMMPS_OK);
-        let d: [f64; 3] = [-0.6, -0.2, 0.1];
-        let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-        let e = d.map(|c| c / r);
+        s.v = v;
+        let (d, r, e) = pair01();
         let mu = 1.0 + 0.5;
         let tau = gamma * (1.0 - r / rc).powi(2) * mu;
         let u = |v: &[f64]| (0..3).map(|c| e[c] * (v[c] - v[3 + c])).sum::<f64>();
         let z = pair_normal(42, 9, 2, 3, 7);
         let expected =
             u(&before) * (-tau * h).exp() + (kbt * mu * (1.0 - (-2.0 * tau * h).exp())).sqrt() * z;
-        assert!((u(&v) - expected).abs() < 1e-12, "{} vs {expected}", u(&v));
+        assert!(
+            (u(&s.v) - expected).abs() < 1e-12,
+            "{} vs {expected}",
+            u(&s.v)
+        );
         // The impulse on atom 0 is its momentum change; the virial is d (x) impulse.
-        let impulse: [f64; 3] = std::array::from_fn(|c| v[c] - before[c]);
+        let impulse: [f64; 3] = std::array::from_fn(|c| s.v[c] - before[c]);
         for (slot, (a, b)) in [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)]
             .into_iter()
             .enumerate()
@@ -588,11 +458,67 @@ mod tests {
                 "{virial:?}"
             );
         }
-        let (p0, p1) = (momentum(&before, &inv_mass), momentum(&v, &inv_mass));
+        let (p0, p1) = (momentum(&before, &s.inv_mass), momentum(&s.v, &s.inv_mass));
         for c in 0..3 {
             assert!((p0[c] - p1[c]).abs() < 1e-14);
         }
-        assert_eq!(&v[6..], &before[6..]);
+        assert_eq!(&s.v[6..], &before[6..]);
+    }
+
+    /// Per type pair: a pair of types 1 and 2 gets the O update with gamma_12 and the weight
+    /// of r_c,12, as `pair dpd`'s coefficients of that type pair mean; with r_c,12 below the
+    /// pair's distance it is left alone, whatever the other pairs' cutoffs.
+    #[test]
+    fn a_pair_of_two_types_uses_the_friction_and_cutoff_of_its_type_pair() {
+        let (kbt, h) = (1.0, 0.1);
+        // gamma_11 = 1, gamma_12 = 20 (r_c 0.9), gamma_22 = 3.
+        let gamma = [0.0, 0.0, 0.0, 0.0, 1.0, 20.0, 0.0, 20.0, 3.0];
+        let mut s = scene();
+        s.types = vec![1, 2, 2];
+        let before = s.v.clone();
+        let (_, r, e) = pair01();
+        let u = |v: &[f64]| (0..3).map(|c| e[c] * (v[c] - v[3 + c])).sum::<f64>();
+        for (rc12, moves) in [(0.9, true), (0.6, false)] {
+            let rc = [0.0, 0.0, 0.0, 0.0, 1.0, rc12, 0.0, rc12, 1.0];
+            let k = Kernels::new(kbt, 2.0, 2, &gamma, &rc).unwrap();
+            let mut v = before.clone();
+            let status = k.sweep(
+                SweepFlow::Ou,
+                h,
+                (1, 2, 0),
+                &[[0, 1]],
+                false,
+                &s.atoms(),
+                &mut v,
+                None,
+                None,
+            );
+            assert_eq!(status, DPD_LAMMPS_OK);
+            if moves {
+                let mu = 1.5;
+                let x = 20.0 * (1.0 - r / rc12).powi(2) * mu * h;
+                let z = pair_normal(1, 2, 0, 3, 7);
+                let expected =
+                    u(&before) * (-x).exp() + (kbt * mu * (1.0 - (-2.0 * x).exp())).sqrt() * z;
+                assert!((u(&v) - expected).abs() < 1e-12, "{} vs {expected}", u(&v));
+            } else {
+                assert_eq!(v, before);
+            }
+        }
+    }
+
+    #[test]
+    fn asymmetric_and_invalid_coefficients_name_the_type_pair() {
+        let rc = [1.0; 9];
+        let asymmetric = [0.0, 0.0, 0.0, 0.0, 1.0, 2.0, 0.0, 3.0, 1.0];
+        let e = Kernels::new(1.0, 2.0, 2, &asymmetric, &rc).err().unwrap();
+        assert!(
+            e.contains("type pair 1 2") && e.contains("symmetric"),
+            "{e}"
+        );
+        let negative = [0.0, 0.0, 0.0, 0.0, 1.0, 2.0, 0.0, 2.0, -1.0];
+        let e = Kernels::new(1.0, 2.0, 2, &negative, &rc).err().unwrap();
+        assert!(e.contains("type pair 2 2") && e.contains("gamma"), "{e}");
     }
 
     /// F's dissipative and random pair force against `-gamma w^2 u + sigma w z / sqrt(dt)`
@@ -600,26 +526,22 @@ mod tests {
     #[test]
     fn the_pair_force_of_f_is_the_dpd_force_without_its_conservative_part() {
         let (gamma, kbt, dt) = (4.5, 1.3, 0.04);
-        let k = Kernels::new(gamma, kbt, 1.0, 2.0).unwrap();
-        let (x, v, inv_mass, tag) = scene();
+        let k = Kernels::uniform(gamma, kbt, 1.0, 2.0).unwrap();
+        let s = scene();
         let mut f = vec![0.0; 9];
         let status = k.dissipative_random(
             dt,
             (5, 6, 1),
             &[[0, 1], [1, 2]],
-            &x,
-            &v,
-            &inv_mass,
-            &tag,
+            &s.atoms(),
+            &s.v,
             &mut f,
             None,
         );
         assert_eq!(status, DPD_LAMMPS_OK);
-        let d: [f64; 3] = [-0.6, -0.2, 0.1];
-        let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-        let e = d.map(|c| c / r);
+        let (_, r, e) = pair01();
         let w = 1.0 - r;
-        let u = (0..3).map(|c| e[c] * (v[c] - v[3 + c])).sum::<f64>();
+        let u = (0..3).map(|c| e[c] * (s.v[c] - s.v[3 + c])).sum::<f64>();
         let sigma = (2.0 * gamma * kbt).sqrt();
         let z = pair_normal(5, 6, 1, 7, 3);
         let expected = -gamma * w * w * u + sigma * w * z / dt.sqrt();
@@ -631,115 +553,123 @@ mod tests {
     }
 
     #[test]
-    fn bad_indices_and_tags_are_refused_without_change() {
-        let k = Kernels::new(4.5, 1.0, 1.0, 2.0).unwrap();
-        let (x, mut v, inv_mass, mut tag) = scene();
-        let before = v.clone();
-        let sweep = |v: &mut [f64], tag: &[c_int], pairs: &[[c_int; 2]]| {
-            k.sweep(
+    fn bad_indices_tags_and_types_are_refused_without_change() {
+        let k = Kernels::uniform(4.5, 1.0, 1.0, 2.0).unwrap();
+        let mut s = scene();
+        let before = s.v.clone();
+        let sweep = |s: &Scene, pairs: &[[c_int; 2]]| {
+            let mut v = s.v.clone();
+            let status = k.sweep(
                 SweepFlow::Bbk,
                 0.1,
                 (1, 1, 0),
                 pairs,
                 false,
-                &x,
-                v,
-                &inv_mass,
-                tag,
+                &s.atoms(),
+                &mut v,
                 None,
                 None,
-            )
+            );
+            assert_eq!(v == before, status != DPD_LAMMPS_OK || pairs.is_empty());
+            status
         };
-        assert_eq!(sweep(&mut v, &tag, &[[0, 3]]), DPD_LAMMPS_INDEX);
-        assert_eq!(sweep(&mut v, &tag, &[[-1, 0]]), DPD_LAMMPS_INDEX);
-        tag[1] = -4;
-        assert_eq!(sweep(&mut v, &tag, &[[0, 1]]), DPD_LAMMPS_TAG);
-        assert_eq!(v, before);
+        assert_eq!(sweep(&s, &[[0, 3]]), DPD_LAMMPS_INDEX);
+        assert_eq!(sweep(&s, &[[-1, 0]]), DPD_LAMMPS_INDEX);
+        s.types[2] = 2;
+        assert_eq!(sweep(&s, &[[0, 1]]), DPD_LAMMPS_TYPE);
+        s.types[2] = 1;
+        s.tag[1] = -4;
+        assert_eq!(sweep(&s, &[[0, 1]]), DPD_LAMMPS_TAG);
     }
 
-    /// The C entry points: a sweep through the ABI equals the Rust call; null arrays where
-    /// values are needed and streams outside 0..=255 are refused with no velocity changed.
+    /// The C entry points: a sweep through the ABI equals the Rust call, with 32-bit and with
+    /// 64-bit tags; null arrays where values are needed, tag widths other than 4 or 8 and
+    /// streams outside 0..=255 are refused with no velocity changed.
     #[test]
     fn the_c_abi_checks_its_pointers_and_sweeps_like_the_rust_call() {
-        let k = Kernels::new(4.5, 1.0, 1.0, 2.0).unwrap();
-        let (x, v, inv_mass, tag) = scene();
+        let k = Kernels::uniform(4.5, 1.0, 1.0, 2.0).unwrap();
+        let s = scene();
         let pairs: [c_int; 4] = [0, 1, 1, 2];
-        let mut expected = v.clone();
+        let mut expected = s.v.clone();
         let status = k.sweep(
             SweepFlow::Ou,
             0.1,
             (3, 4, 5),
             &[[0, 1], [1, 2]],
             false,
-            &x,
+            &s.atoms(),
             &mut expected,
-            &inv_mass,
-            &tag,
             None,
             None,
         );
         assert_eq!(status, DPD_LAMMPS_OK);
-        let call = |stream: c_int, v: *mut f64, x: *const f64| {
-            // SAFETY: every non-null pointer points to arrays of the lengths given.
-            unsafe {
-                dpd_lammps_sweep(
-                    &k,
-                    0,
-                    0.1,
-                    3,
-                    4,
-                    stream,
-                    0,
-                    2,
-                    pairs.as_ptr(),
-                    3,
-                    x,
-                    v,
-                    inv_mass.as_ptr(),
-                    tag.as_ptr(),
-                    0,
-                    std::ptr::null(),
-                    std::ptr::null(),
-                    std::ptr::null(),
-                    std::ptr::null_mut(),
-                )
-            }
-        };
-        let mut through_abi = v.clone();
-        assert_eq!(call(5, through_abi.as_mut_ptr(), x.as_ptr()), DPD_LAMMPS_OK);
-        assert_eq!(through_abi, expected);
-        let mut untouched = v.clone();
+        let wide: Vec<i64> = s.tag.iter().map(|&t| i64::from(t)).collect();
+        let call =
+            |stream: c_int, v: *mut f64, x: *const f64, (tag, bytes): (*const c_void, c_int)| {
+                // SAFETY: every non-null pointer points to arrays of the lengths given.
+                unsafe {
+                    dpd_lammps_sweep(
+                        &k,
+                        0,
+                        0.1,
+                        3,
+                        4,
+                        stream,
+                        0,
+                        2,
+                        pairs.as_ptr(),
+                        3,
+                        x,
+                        v,
+                        s.inv_mass.as_ptr(),
+                        tag,
+                        bytes,
+                        s.types.as_ptr(),
+                        std::ptr::null(),
+                        std::ptr::null(),
+                        std::ptr::null_mut(),
+                    )
+                }
+            };
+        let small = (s.tag.as_ptr().cast::<c_void>(), 4);
+        let big = (wide.as_ptr().cast::<c_void>(), 8);
+        for tags in [small, big] {
+            let mut through_abi = s.v.clone();
+            assert_eq!(
+                call(5, through_abi.as_mut_ptr(), s.x.as_ptr(), tags),
+                DPD_LAMMPS_OK
+            );
+            assert_eq!(through_abi, expected);
+        }
+        let mut untouched = s.v.clone();
+        let v = untouched.as_mut_ptr();
+        assert_eq!(call(256, v, s.x.as_ptr(), small), DPD_LAMMPS_FLOW);
+        assert_eq!(call(5, v, s.x.as_ptr(), (small.0, 2)), DPD_LAMMPS_TAG);
         assert_eq!(
-            call(256, untouched.as_mut_ptr(), x.as_ptr()),
-            DPD_LAMMPS_FLOW
-        );
-        assert_eq!(call(5, std::ptr::null_mut(), x.as_ptr()), DPD_LAMMPS_NULL);
-        assert_eq!(
-            call(5, untouched.as_mut_ptr(), std::ptr::null()),
+            call(5, std::ptr::null_mut(), s.x.as_ptr(), small),
             DPD_LAMMPS_NULL
         );
-        assert_eq!(untouched, v);
+        assert_eq!(call(5, v, std::ptr::null(), small), DPD_LAMMPS_NULL);
+        assert_eq!(untouched, s.v);
     }
 
     /// The T update of one pair against its formula from algorithms.md section 2, evaluated
     /// here independently: `u' = u e^{-tau h} + (f mu / tau)(1 - e^{-tau h}) + sqrt(kT mu (1 -
     /// e^{-2 tau h})) z` with the `dpd/soft` force `f = a_12 (1 - r/r_c,12)` of the atoms'
     /// types; the virial holds the impulse less its conservative part `f h`. Without the
-    /// style, or with a type outside it, the sweep is refused with nothing changed.
+    /// style, or with a style of fewer types, the sweep is refused with nothing changed.
     #[test]
     fn one_pair_gets_the_exact_trotter_update_with_its_types_soft_force() {
         let (gamma, kbt, h) = (4.5, 1.3, 0.05);
-        let k = Kernels::new(gamma, kbt, 1.0, 2.0).unwrap();
-        let (x, mut v, inv_mass, tag) = scene();
-        let before = v.clone();
+        let k = Kernels::new(kbt, 2.0, 2, &[gamma; 9], &[1.0; 9]).unwrap();
+        let mut s = scene();
+        s.types = vec![1, 2, 2];
+        let before = s.v.clone();
         // Two types: a_12 = 30 with cutoff 0.9 (so the pair's force uses its own cutoff).
         let a = [0.0, 0.0, 0.0, 0.0, 25.0, 30.0, 0.0, 30.0, 40.0];
         let rc = [0.0, 0.0, 0.0, 0.0, 1.0, 0.9, 0.0, 0.9, 1.0];
-        let types = [1, 2, 2];
-        let conservative = Conservative {
-            style: SoftStyle::new(2, &a, &rc, [1.0; 4]).unwrap(),
-            types: &types,
-        };
+        let style = SoftStyle::new(2, &a, &rc, [1.0; 4]).unwrap();
+        let one_type = SoftStyle::new(1, &a, &rc, [1.0; 4]).unwrap();
         let mut virial = [0.0; 6];
         let sweep = |v: &mut [f64], c: Option<&Conservative>, virial: Option<&mut [f64; 6]>| {
             let pairs = [[0, 1], [0, 2]];
@@ -749,29 +679,21 @@ mod tests {
                 (42, 9, 2),
                 &pairs,
                 false,
-                &x,
+                &s.atoms(),
                 v,
-                &inv_mass,
-                &tag,
                 c,
                 virial,
             )
         };
+        let mut v = before.clone();
         assert_eq!(sweep(&mut v, None, None), DPD_LAMMPS_STYLE);
-        let bad_types = [1, 3, 1];
-        let outside = Conservative {
-            style: SoftStyle::new(2, &a, &rc, [1.0; 4]).unwrap(),
-            types: &bad_types,
-        };
-        assert_eq!(sweep(&mut v, Some(&outside), None), DPD_LAMMPS_STYLE);
+        assert_eq!(sweep(&mut v, Some(&one_type), None), DPD_LAMMPS_STYLE);
         assert_eq!(v, before);
         assert_eq!(
-            sweep(&mut v, Some(&conservative), Some(&mut virial)),
+            sweep(&mut v, Some(&style), Some(&mut virial)),
             DPD_LAMMPS_OK
         );
-        let d: [f64; 3] = [-0.6, -0.2, 0.1];
-        let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-        let e = d.map(|c| c / r);
+        let (d, r, e) = pair01();
         let mu = 1.0 + 0.5;
         let tau = gamma * (1.0 - r).powi(2) * mu;
         let f = 30.0 * (1.0 - r / 0.9);
@@ -790,16 +712,101 @@ mod tests {
             let expected = d[a] * (impulse[b] - f * h * e[b]);
             assert!((virial[slot] - expected).abs() < 1e-12, "{virial:?}");
         }
-        let (p0, p1) = (momentum(&before, &inv_mass), momentum(&v, &inv_mass));
+        let (p0, p1) = (momentum(&before, &s.inv_mass), momentum(&v, &s.inv_mass));
         for c in 0..3 {
             assert!((p0[c] - p1[c]).abs() < 1e-14);
         }
         assert_eq!(&v[6..], &before[6..]);
     }
 
+    /// The four-pass sweep against the plain loop it replaces (each pair in turn: geometry,
+    /// `pair_normal`, change, update), bitwise, for every flow, both orders and two types with
+    /// their own friction and cutoff, on 60 atoms in a cube of side 2 (every pair listed).
+    #[test]
+    fn the_sweep_is_bitwise_the_pair_by_pair_loop() {
+        let n: usize = 60;
+        let mut state = 12345u64;
+        let mut next = move || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let x: Vec<f64> = (0..3 * n).map(|_| 2.0 * next()).collect();
+        let v0: Vec<f64> = (0..3 * n).map(|_| next() - 0.5).collect();
+        let inv_mass: Vec<f64> = (0..n).map(|k| 1.0 / (1.0 + (k % 3) as f64)).collect();
+        let tag: Vec<i32> = (0..n as i32).map(|k| 1000 - 7 * k).collect();
+        let types: Vec<c_int> = (0..n).map(|k| 1 + (k % 2) as c_int).collect();
+        let atoms = Atoms {
+            x: &x,
+            inv_mass: &inv_mass,
+            tag: Tags::Small(&tag),
+            types: &types,
+        };
+        let pairs: Vec<[c_int; 2]> = (0..n as c_int)
+            .flat_map(|i| (i + 1..n as c_int).map(move |j| [i, j]))
+            .collect();
+        let gamma = [0.0, 0.0, 0.0, 0.0, 4.5, 9.0, 0.0, 9.0, 20.0];
+        let rc = [0.0, 0.0, 0.0, 0.0, 1.0, 0.9, 0.0, 0.9, 1.1];
+        let k = Kernels::new(1.0, 2.0, 2, &gamma, &rc).unwrap();
+        let a = [0.0, 0.0, 0.0, 0.0, 25.0, 40.0, 0.0, 40.0, 25.0];
+        let style = SoftStyle::new(2, &a, &rc, [1.0; 4]).unwrap();
+        for flow in [SweepFlow::Ou, SweepFlow::Bbk, SweepFlow::Trotter] {
+            for reverse in [false, true] {
+                let key = (3, 17, 2);
+                let mut fast = v0.clone();
+                let (mut vf, mut vs) = ([0.0; 6], [0.0; 6]);
+                let style = (flow == SweepFlow::Trotter).then_some(&style);
+                let status = k.sweep(
+                    flow,
+                    0.07,
+                    key,
+                    &pairs,
+                    reverse,
+                    &atoms,
+                    &mut fast,
+                    style,
+                    Some(&mut vf),
+                );
+                assert_eq!(status, DPD_LAMMPS_OK);
+                let mut slow = v0.clone();
+                let mut visit = |&[i, j]: &[c_int; 2]| {
+                    let (i, j) = (i as usize, j as usize);
+                    let c = k.coefficients(&atoms, i, j);
+                    let Some((e, r, w)) = Kernels::geometry(&atoms, i, j, c.rc) else {
+                        return;
+                    };
+                    let z = pair_normal(key.0, key.1, key.2, tag[i] as u32, tag[j] as u32);
+                    let f = style.map_or(0.0, |s| {
+                        s.pair_force_of_types(types[i] as usize, types[j] as usize, r)
+                    });
+                    let near = Near { i, j, e, r, w, c };
+                    let ch = k.change(flow, 0.07, &near, inv_mass[i] + inv_mass[j], z, f);
+                    let u = (0..3)
+                        .map(|d| e[d] * (slow[3 * i + d] - slow[3 * j + d]))
+                        .sum::<f64>();
+                    let impulse = ch.slope * u + ch.offset;
+                    for d in 0..3 {
+                        slow[3 * i + d] += impulse * e[d] * inv_mass[i];
+                        slow[3 * j + d] -= impulse * e[d] * inv_mass[j];
+                    }
+                    add_virial(&mut vs, &atoms, i, j, impulse - ch.conservative, e);
+                };
+                if reverse {
+                    pairs.iter().rev().for_each(&mut visit);
+                } else {
+                    pairs.iter().for_each(&mut visit);
+                }
+                assert_eq!(fast, slow, "{flow:?} reverse {reverse}");
+                assert_eq!(vf, vs, "{flow:?} reverse {reverse}");
+                assert_ne!(fast, v0);
+            }
+        }
+    }
+
     #[test]
     fn invalid_parameters_name_the_field() {
-        let e = Kernels::new(4.5, -1.0, 1.0, 2.0).err().unwrap();
+        let e = Kernels::uniform(4.5, -1.0, 1.0, 2.0).err().unwrap();
         assert!(e.contains("kbt") && e.contains("-1"), "{e}");
     }
 }

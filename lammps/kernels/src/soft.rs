@@ -13,7 +13,8 @@
 //! a half list with Newton's third law on: each pair appears once and both atoms (ghosts
 //! included) receive its force, energy and virial halves.
 
-use crate::{slice, slice_mut, DPD_LAMMPS_INDEX, DPD_LAMMPS_NULL, DPD_LAMMPS_OK};
+use crate::abi::{slice, slice_mut};
+use crate::{DPD_LAMMPS_INDEX, DPD_LAMMPS_NULL, DPD_LAMMPS_OK};
 use dpd_core::potential::Soft;
 use std::ffi::c_int;
 
@@ -54,23 +55,28 @@ impl<'a> SoftStyle<'a> {
         })
     }
 
+    /// The number of atom types.
+    pub fn ntypes(&self) -> usize {
+        self.ntypes
+    }
+
     /// The type of atom `k` as a table row, if `k` is an atom and its type in `1..=ntypes`.
-    pub(crate) fn type_of(&self, types: &[c_int], k: usize) -> Option<usize> {
+    fn type_of(&self, types: &[c_int], k: usize) -> Option<usize> {
         let t = usize::try_from(*types.get(k)?).ok()?;
         (1..=self.ntypes).contains(&t).then_some(t)
     }
 
-    /// The conservative force along `e_ij` between atoms `i` and `j` of `types` at distance
-    /// `r`: `a_ij (1 - r/r_c,ij)`, 0 at and beyond the pair's cutoff, without special-bond
-    /// factor (a T sweep's pairs carry none); `None` if an atom or its type is out of range.
-    pub fn pair_force(&self, types: &[c_int], i: usize, j: usize, r: f64) -> Option<f64> {
-        let pair = self.type_of(types, i)? * (self.ntypes + 1) + self.type_of(types, j)?;
+    /// The conservative force along `e_ij` between atoms of types `ti` and `tj` (in
+    /// `1..=ntypes`) at distance `r`: `a_ij (1 - r/r_c,ij)`, 0 at and beyond the pair's
+    /// cutoff, without special-bond factor (a T sweep's pairs carry none).
+    pub fn pair_force_of_types(&self, ti: usize, tj: usize, r: f64) -> f64 {
+        let pair = ti * (self.ntypes + 1) + tj;
         let rc = self.rc[pair];
-        Some(if r < rc {
+        if r < rc {
             Soft::new(self.a[pair], rc).force(1.0 - r / rc)
         } else {
             0.0
-        })
+        }
     }
 
     /// Add the forces between atom `i` and its `neighbours` (neighbour indices as LAMMPS
