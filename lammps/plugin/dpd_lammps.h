@@ -11,24 +11,26 @@ extern "C" {
 #endif
 
 enum { DPD_LAMMPS_OK = 0, DPD_LAMMPS_NULL = 1, DPD_LAMMPS_INDEX = 2, DPD_LAMMPS_FLOW = 3,
-       DPD_LAMMPS_TAG = 4, DPD_LAMMPS_STYLE = 5 };
+       DPD_LAMMPS_TAG = 4, DPD_LAMMPS_STYLE = 5, DPD_LAMMPS_TYPE = 6 };
 enum { DPD_LAMMPS_SWEEP_O = 0, DPD_LAMMPS_SWEEP_OB = 1, DPD_LAMMPS_SWEEP_T = 2 };
 
 typedef struct DpdLammpsKernels DpdLammpsKernels;
 
-DpdLammpsKernels *dpd_lammps_new(double gamma, double kbt, double rc, double exponent,
-                                 char *message, size_t message_len);
+/* Per type-pair tables (gamma, rc; dpd/soft's a, rc) hold (ntypes + 1)^2 doubles at
+   I * (ntypes + 1) + J; tags are LAMMPS's tagint, tag_bytes = sizeof(tagint). */
+DpdLammpsKernels *dpd_lammps_new(double kbt, double exponent, int ntypes, const double *gamma,
+                                 const double *rc, char *message, size_t message_len);
 void dpd_lammps_free(DpdLammpsKernels *kernels);
 int dpd_lammps_sweep(const DpdLammpsKernels *kernels, int flow, double h, uint64_t seed,
                      uint64_t step, int stream, int reverse, size_t npairs, const int *pairs,
                      size_t natoms, const double *x, double *v, const double *inv_mass,
-                     const int *tag, int ntypes, const double *a, const double *rc,
-                     const int *type, double *virial);
+                     const void *tag, int tag_bytes, const int *type, const double *soft_a,
+                     const double *soft_rc, double *virial);
 int dpd_lammps_dissipative_random(const DpdLammpsKernels *kernels, double dt, uint64_t seed,
                                   uint64_t step, int stream, size_t npairs, const int *pairs,
                                   size_t natoms, const double *x, const double *v,
-                                  const double *inv_mass, const int *tag, double *f,
-                                  double *virial);
+                                  const double *inv_mass, const void *tag, int tag_bytes,
+                                  const int *type, double *f, double *virial);
 int dpd_lammps_soft_forces(int ntypes, const double *a, const double *rc, const double *special,
                            int inum, const int *ilist, const int *numneigh,
                            const int *const *firstneigh, int nall, const double *x,

@@ -35,18 +35,21 @@
 #include "pair.h"
 #include "pair_dpd_soft.h"
 #include "update.h"
+#include "utils.h"
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <algorithm>
 #include <cstring>
+#include <sstream>
 #include <string>
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
 using DpdSplit::Stage;
 
-static_assert(sizeof(tagint) == sizeof(int), "the kernels take 32-bit atom tags (LAMMPS_SMALLBIG)");
 
 namespace {
 
@@ -87,17 +90,79 @@ bool any_stage(const DpdSplit::Scheme &scheme, bool (*pred)(int))
   return false;
 }
 
+/// A pair style of LAMMPS that applies DPD friction and noise itself, and the columns of its
+/// `write_data_all` lines ("i j coefficients...") that hold its friction coefficients (none:
+/// its friction cannot be read, so the style is refused as a thermostat whatever its values).
+struct Thermostat {
+  const char *style;
+  int columns[2];
+};
+
+const Thermostat THERMOSTATS[] = {
+    {"dpd", {3, -1}},                      // i j a0 gamma cut
+    {"dpd/tstat", {2, -1}},                // i j gamma cut
+    {"dpd/ext", {3, 4}},                   // i j a0 gamma gammaT ws wsT cut
+    {"dpd/ext/tstat", {2, 3}},             // i j gamma gammaT ws wsT cut
+    {"dpd/coul/slater/long", {3, -1}},    // i j a0 gamma flag cut
+    {"dpd/fdt", {-1, -1}},                 // with fix shardlow: sigma, no gamma
+    {"dpd/fdt/energy", {-1, -1}},
+    {"mdpd", {-1, -1}},
+    {"edpd", {-1, -1}},
+    {"tdpd", {-1, -1}},
+    {"sdpd/taitwater/isothermal", {-1, -1}},
+};
+
+/// `style` without an accelerator suffix (LAMMPS's -sf gpu, intel, kk, omp, opt).
+std::string base_style(std::string style)
+{
+  for (const char *suffix : {"/gpu", "/intel", "/kk/device", "/kk/host", "/kk", "/omp", "/opt"}) {
+    size_t n = strlen(suffix);
+    if (style.size() > n && style.compare(style.size() - n, n, suffix) == 0)
+      return style.substr(0, style.size() - n);
+  }
+  return style;
+}
+
+/// The first type pair "I J" whose friction in the `write_data_all` lines of `pair` is
+/// positive, with that friction, or an empty string when every friction is zero.
+std::string positive_friction(Pair *pair, const Thermostat &t)
+{
+  char *text = nullptr;
+  size_t len = 0;
+  FILE *fp = open_memstream(&text, &len);
+  if (!fp) return "?";    // cannot read the coefficients: take them as friction
+  pair->write_data_all(fp);
+  fclose(fp);
+  std::istringstream lines(std::string(text, len));
+  free(text);
+  std::string line;
+  while (std::getline(lines, line)) {
+    std::istringstream words(line);
+    std::vector<std::string> w;
+    for (std::string word; words >> word;) w.push_back(word);
+    // Only the type pairs this (sub-)style was given coefficients for (pair hybrid).
+    int i = w.size() > 1 ? atoi(w[0].c_str()) : 0, j = w.size() > 1 ? atoi(w[1].c_str()) : 0;
+    if (i < 1 || j < 1 || !pair->setflag || !pair->setflag[i][j]) continue;
+    for (int c : t.columns)
+      if (c >= 0 && c < (int) w.size() && strtod(w[c].c_str(), nullptr) > 0.0)
+        return w[0] + " " + w[1] + " (" + w[c] + ")";
+  }
+  return "";
+}
+
 }    // namespace
 
 FixDPDSplit::FixDPDSplit(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), scheme(nullptr), kernels(nullptr), list(nullptr), soft(nullptr), split(0),
+    Fix(lmp, narg, arg), scheme(nullptr), kt(0.0), exponent(2.0), max_rc(0.0), seed(0),
+    exclusive(true), kernels(nullptr), list(nullptr), soft(nullptr), split(0),
     last_drift(-1), forces_stale(false), ghosts_stale(false), step_eflag(0), step_vflag(0),
     epoch(0), full_epoch(-1), colour_build(-1), comm_mode(COMM_V), full_virial{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}
 {
-  const char *usage = "fix ID group dpd/split SCHEME kT gamma r_c seed [exponent s]";
-  if (narg != 8 && narg != 10)
-    error->all(FLERR, "fix dpd/split: expected {} (5 or 7 arguments after 'fix ID group'), got {}",
-               usage, narg - 3);
+  const char *usage = "fix ID group dpd/split SCHEME kT gamma r_c seed [exponent s] "
+                      "[coeff I J gamma r_c] ... [exclusive yes|no]";
+  if (narg < 8)
+    error->all(FLERR, "fix dpd/split: expected {} (at least 5 arguments after 'fix ID group'), "
+               "got {}", usage, narg - 3);
   for (int k = 0; k < DpdSplit::NSCHEMES; ++k) {
     const DpdSplit::Scheme &s = DpdSplit::SCHEMES[k];
     if (strcmp(arg[3], s.name) == 0 || strcmp(arg[3], s.ident) == 0) scheme = &s;
@@ -117,8 +182,8 @@ FixDPDSplit::FixDPDSplit(LAMMPS *lmp, int narg, char **arg) :
     return value;
   };
   kt = number(4, "kT");
-  gamma = number(5, "gamma");
-  rc = number(6, "r_c");
+  double gamma_all = number(5, "gamma");
+  double rc_all = number(6, "r_c");
   {
     char *end = nullptr;
     errno = 0;
@@ -129,15 +194,51 @@ FixDPDSplit::FixDPDSplit(LAMMPS *lmp, int narg, char **arg) :
     seed = (unsigned long long) value;
   }
   exponent = 2.0;
-  if (narg == 10) {
-    if (strcmp(arg[8], "exponent") != 0)
-      error->all(FLERR, "fix dpd/split: unknown keyword '{}'; the only keyword is 'exponent s' ({})",
-                 arg[8], usage);
-    exponent = number(9, "exponent");
+  exclusive = true;
+  int ntypes = atom->ntypes, n = ntypes + 1;
+  gamma.assign(n * n, gamma_all);
+  rc.assign(n * n, rc_all);
+  for (int k = 8; k < narg;) {
+    auto values = [&](int count) {
+      if (k + count >= narg)
+        error->all(FLERR, "fix dpd/split: keyword '{}' needs {} value(s) ({})", arg[k], count,
+                   usage);
+    };
+    if (strcmp(arg[k], "exponent") == 0) {
+      values(1);
+      exponent = number(k + 1, "exponent");
+      k += 2;
+    } else if (strcmp(arg[k], "coeff") == 0) {
+      values(4);
+      int ilo, ihi, jlo, jhi;
+      utils::bounds(FLERR, arg[k + 1], 1, ntypes, ilo, ihi, error);
+      utils::bounds(FLERR, arg[k + 2], 1, ntypes, jlo, jhi, error);
+      double g = number(k + 3, "coeff gamma"), r = number(k + 4, "coeff r_c");
+      for (int i = ilo; i <= ihi; ++i)
+        for (int j = jlo; j <= jhi; ++j) {
+          gamma[i * n + j] = gamma[j * n + i] = g;
+          rc[i * n + j] = rc[j * n + i] = r;
+        }
+      k += 5;
+    } else if (strcmp(arg[k], "exclusive") == 0) {
+      values(1);
+      exclusive = utils::logical(FLERR, arg[k + 1], false, lmp);
+      k += 2;
+    } else {
+      error->all(FLERR, "fix dpd/split: unknown keyword '{}'; the keywords are exponent, coeff "
+                 "and exclusive ({})", arg[k], usage);
+    }
   }
+  max_rc = 0.0;
+  for (int i = 1; i < n; ++i)
+    for (int j = 1; j < n; ++j) max_rc = std::max(max_rc, rc[i * n + j]);
   char message[256] = {0};
-  kernels = dpd_lammps_new(gamma, kt, rc, exponent, message, sizeof(message));
+  kernels = dpd_lammps_new(kt, exponent, ntypes, gamma.data(), rc.data(), message,
+                           sizeof(message));
   if (!kernels) error->all(FLERR, "fix dpd/split: {}", message);
+  // Stages whose velocities compute temp/split asked for (from its init(), every run).
+  kinetic_wanted.assign(scheme->nstages + 1, 0);
+  kinetic_sums.assign(scheme->nstages + 1, {0.0, 0.0, 0.0, 0.0, 0.0, 0.0});
   if (!scheme->consistent && comm->me == 0)
     error->warning(FLERR, "fix dpd/split: scheme '{}' = {} is inconsistent (exported with "
                    "--allow-inconsistent): it does not sample the DPD ensemble",
@@ -200,15 +301,70 @@ void FixDPDSplit::init()
     error->all(FLERR, "fix dpd/split: needs atom IDs (atom_modify id yes), the pair noise is keyed by them");
   if (!force->pair)
     error->all(FLERR, "fix dpd/split: needs a pair style (its neighbour list gives the pairs within r_c)");
-  if (force->pair->cutforce < rc)
-    error->all(FLERR, "fix dpd/split: r_c = {} exceeds the pair style's cutoff {}; the neighbour "
-               "list must hold every pair within r_c", rc, force->pair->cutforce);
   if (!force->newton_pair)
     error->all(FLERR, "fix dpd/split: needs newton_pair on (each pair in one rank's list only)");
   if (update->dt <= 0.0) error->all(FLERR, "fix dpd/split: timestep must be > 0");
+  check_exclusive();
+  check_cutoffs_and_tags();
   check_subdomain_size();
   check_trotter_input();
   neighbor->add_request(this);
+}
+
+/// Refuse a second integrator (another fix that moves atoms: fix nve, nvt, a second fix
+/// dpd/split, ...) and pair styles that apply DPD friction and noise themselves (pair dpd with
+/// some gamma_IJ > 0, ...): either would integrate or thermostat the atoms twice, silently
+/// (LAMMPS only warns of the first). Keyword `exclusive no` allows both on purpose.
+void FixDPDSplit::check_exclusive()
+{
+  if (!exclusive) return;
+  const char *allow = "; add 'exclusive no' to fix dpd/split to combine them on purpose";
+  for (Fix *other : modify->get_fix_list())
+    if (other != this && other->time_integrate)
+      error->all(FLERR, "fix dpd/split: fix {} (style {}) also integrates the equations of "
+                 "motion, while fix dpd/split performs the whole step of its scheme on all "
+                 "atoms: the atoms would be moved twice{}", other->id, other->style, allow);
+  std::vector<Pair *> seen;
+  for (int nsub = 1;; ++nsub) {
+    Pair *pair = force->pair_match("dpd", 0, nsub);
+    if (!pair || std::find(seen.begin(), seen.end(), pair) != seen.end()) break;
+    seen.push_back(pair);
+    const char *name = force->pair_match_ptr(pair);
+    std::string style = base_style(name ? name : force->pair_style);
+    for (const Thermostat &t : THERMOSTATS) {
+      if (style != t.style) continue;
+      bool readable = t.columns[0] >= 0;
+      std::string which = readable ? positive_friction(pair, t) : "";
+      if (!readable)
+        error->all(FLERR, "fix dpd/split: pair style {} applies DPD friction and noise of its "
+                   "own, on top of the fix's{}", name ? name : force->pair_style, allow);
+      if (!which.empty())
+        error->all(FLERR, "fix dpd/split: pair style {} has friction gamma > 0 for types {}: "
+                   "it applies DPD friction and noise of its own, on top of the fix's, which "
+                   "doubles the friction; set its gamma to 0 in pair_coeff or use pair_style "
+                   "dpd/soft{}", name ? name : force->pair_style, which, allow);
+    }
+  }
+}
+
+/// Refuse type pairs whose r_c,IJ exceeds the pair style's cutoff (the neighbour list holds
+/// pairs within the pair style's cutoff plus the skin only), and atom IDs beyond the 32-bit
+/// key of the pair noise.
+void FixDPDSplit::check_cutoffs_and_tags()
+{
+  int n = atom->ntypes + 1;
+  for (int i = 1; i < n; ++i)
+    for (int j = i; j < n; ++j)
+      if (rc[i * n + j] * rc[i * n + j] > force->pair->cutsq[i][j])
+        error->all(FLERR, "fix dpd/split: r_c = {} of types {} {} exceeds the pair style's cutoff "
+                   "{} for them; the neighbour list must hold every pair within r_c",
+                   rc[i * n + j], i, j, sqrt(force->pair->cutsq[i][j]));
+  tagint mine = 0, most = 0;
+  for (int i = 0; i < atom->nlocal; ++i) mine = std::max(mine, atom->tag[i]);
+  MPI_Allreduce(&mine, &most, 1, MPI_LMP_TAGINT, MPI_MAX, world);
+  if ((unsigned long long) most > 4294967295ULL)
+    error->all(FLERR, "fix dpd/split: atom ID {} exceeds 2^32 - 1, the largest the pair noise "
+               "is keyed by", most);
 }
 
 /// For a scheme with a T stage, point `soft` at the pair style dpd/soft whose force T
@@ -244,9 +400,10 @@ void FixDPDSplit::check_trotter_input()
   int n = atom->ntypes + 1;
   for (int i = 1; i < n; ++i)
     for (int j = i; j < n; ++j)
-      if (soft->cutoffs()[i * n + j] > rc)
+      if (soft->cutoffs()[i * n + j] > rc[i * n + j])
         error->all(FLERR, "{}pair_coeff {} {} has cutoff {} beyond the fix's r_c = {}: the sweep "
-                   "sees only the pairs within r_c", why, i, j, soft->cutoffs()[i * n + j], rc);
+                   "sees only the pairs within r_c", why, i, j, soft->cutoffs()[i * n + j],
+                   rc[i * n + j]);
 }
 
 /// Refuse subdomains thinner than 4 r_c + 2 skin (see the header of this file) along a
@@ -265,7 +422,7 @@ void FixDPDSplit::check_subdomain_size()
   for (int d = 0; d < domain->dimension; ++d) {
     if (!domain->periodicity[d] && comm->procgrid[d] == 1) continue;
     double side = 1.0 / (comm->procgrid[d] * gradient[d]);
-    double need = 4.0 * rc + 2.0 * neighbor->skin;
+    double need = 4.0 * max_rc + 2.0 * neighbor->skin;
     if (side < need)
       error->all(FLERR, "fix dpd/split: subdomain side {:.4g} along {} is below 4 r_c + 2 skin = "
                  "{:.4g}, the size the staged sweep needs to stay sequential; use fewer ranks "
@@ -290,6 +447,38 @@ void FixDPDSplit::setup(int)
                scheme->program, modify->n_post_force_any);
   forces_stale = ghosts_stale = false;
   ++epoch;
+  for (int k = 1; k <= scheme->nstages; ++k)
+    if (kinetic_wanted[k]) record(k);
+}
+
+int FixDPDSplit::thermostat_stage() const
+{
+  for (int k = scheme->nstages - 1; k >= 0; --k)
+    if (needs_ghosts(scheme->stages[k].flow)) return k + 1;
+  return scheme->nstages;
+}
+
+void FixDPDSplit::record_kinetic(int stage)
+{
+  kinetic_wanted[stage] = 1;
+}
+
+/// The local kinetic tensor `sum m v_a v_b` of the owned atoms' current velocities, as the
+/// velocities after `stage`.
+void FixDPDSplit::record(int stage)
+{
+  double **v = atom->v;
+  std::array<double, 6> &t = kinetic_sums[stage];
+  t.fill(0.0);
+  for (int i = 0; i < atom->nlocal; ++i) {
+    double m = atom->rmass ? atom->rmass[i] : atom->mass[atom->type[i]];
+    t[0] += m * v[i][0] * v[i][0];
+    t[1] += m * v[i][1] * v[i][1];
+    t[2] += m * v[i][2] * v[i][2];
+    t[3] += m * v[i][0] * v[i][1];
+    t[4] += m * v[i][0] * v[i][2];
+    t[5] += m * v[i][1] * v[i][2];
+  }
 }
 
 void FixDPDSplit::initial_integrate(int vflag)
@@ -346,6 +535,7 @@ void FixDPDSplit::run_stages(int from, int to)
         full_force(stage);
         break;
     }
+    if (kinetic_wanted[k + 1]) record(k + 1);
   }
 }
 
@@ -438,10 +628,10 @@ void FixDPDSplit::sweep(const Stage &stage)
     check_status(dpd_lammps_sweep(kernels, flow, h, seed, (uint64_t) update->ntimestep,
                                   stage.stream, stage.reverse, pairs.size() / 2, pairs.data(),
                                   nall, &atom->x[0][0], &atom->v[0][0], inv_mass.data(),
-                                  atom->tag, trotter ? atom->ntypes : 0,
+                                  atom->tag, sizeof(tagint), atom->type,
                                   trotter ? soft->strengths() : nullptr,
                                   trotter ? soft->cutoffs() : nullptr,
-                                  trotter ? atom->type : nullptr, vflag_global ? impulses : nullptr),
+                                  vflag_global ? impulses : nullptr),
                  "sweep");
     comm_mode = COMM_DV;
     comm->reverse_comm(this);
@@ -468,7 +658,8 @@ void FixDPDSplit::full_force(const Stage &stage)
                                                  (uint64_t) update->ntimestep, stage.stream,
                                                  pairs.size() / 2, pairs.data(), nall,
                                                  &atom->x[0][0], &atom->v[0][0],
-                                                 inv_mass.data(), atom->tag, full.data(),
+                                                 inv_mass.data(), atom->tag, sizeof(tagint),
+                                                 atom->type, full.data(),
                                                  thermo_virial ? full_virial : nullptr),
                    "full force");
     comm_mode = COMM_F;

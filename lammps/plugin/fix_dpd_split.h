@@ -7,6 +7,7 @@
 #include "fix.h"
 #include "schemes.h"
 
+#include <array>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -26,10 +27,28 @@ class FixDPDSplit : public Fix {
   int pack_reverse_comm(int, int, double *) override;
   void unpack_reverse_comm(int, int *, double *) override;
 
+  /// For compute temp/split: the number of stages of the scheme, its program, the stage
+  /// (1-based) after which its last O, Ob or T stage leaves the velocities (the step's last
+  /// stage if it has none), and the local sums `m v_a v_b` (xx, yy, zz, xy, xz, yz) of the
+  /// velocities after a stage, which the fix records during each step once asked to.
+  int stage_count() const { return scheme->nstages; }
+  const char *program() const { return scheme->program; }
+  int thermostat_stage() const;
+  void record_kinetic(int stage);
+  const double *kinetic(int stage) const { return kinetic_sums[stage].data(); }
+
  private:
   const DpdSplit::Scheme *scheme;
-  double kt, gamma, rc, exponent;
+  double kt, exponent;
+  /// Per pair of atom types (row-major, (ntypes + 1)^2, row and column 0 unused): the
+  /// friction gamma_IJ and cutoff r_c,IJ of the dissipative and random weights, as pair dpd's
+  /// pair_coeff sets them; `max_rc` is the largest.
+  std::vector<double> gamma, rc;
+  double max_rc;
   unsigned long long seed;
+  /// Refuse other integrators and pair styles with their own DPD thermostat (keyword
+  /// `exclusive`, default yes).
+  bool exclusive;
   DpdLammpsKernels *kernels;
   class NeighList *list;
   /// The conservative force of T stages (null when the scheme has none), set by init().
@@ -55,6 +74,11 @@ class FixDPDSplit : public Fix {
   /// The virial of the F pair forces in `full` (xx, yy, zz, xy, xz, yz).
   double full_virial[6];
   std::vector<int> colour_pairs[8];
+  /// Per stage (1-based; 0 unused): whether a compute asked for the velocities after it, and
+  /// their local kinetic tensor at the last step.
+  std::vector<char> kinetic_wanted;
+  std::vector<std::array<double, 6>> kinetic_sums;
+  void record(int stage);
 
   void run_stages(int from, int to);
   void drift(double h);
@@ -64,6 +88,8 @@ class FixDPDSplit : public Fix {
   void refresh(int eflag, int vflag);
   void refresh_ghosts();
   void check_subdomain_size();
+  void check_exclusive();
+  void check_cutoffs_and_tags();
   void check_trotter_input();
   void prepare_atoms();
   void colour_pairs_of_list();

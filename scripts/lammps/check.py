@@ -33,7 +33,7 @@ FAILURES = []
 
 # The exported schemes the checks use: fix identifier -> the name `dpd run` takes.
 SCHEMES = {"aboba": "aboba", "baoab": "baoab", "obabo": "obabo",
-           "s_x1_s_x0_s_x1_o": "S(x1) S(x0) S(x1) O", "vv": "vv", "sas": "sas"}
+           "s_x1_s_x0_s_x1_o": "S(x1) S(x0) S(x1) O", "vv": "vv", "sas": "sas", "dpd_s1": "dpd-s1"}
 # The schemes with T stages, whose exact pair update includes dpd/soft's conservative force.
 TROTTER = {"sas"}
 
@@ -105,18 +105,24 @@ def run_lammps(args, text, ranks, name):
 
 
 def thermo_rows(output):
-    rows, on = [], False
+    """The thermo rows of the last run of `output` (a block from a "Step ..." header to its
+    "Loop time" line), as floats."""
+    blocks, rows, width = [], None, 0
     for line in output.splitlines():
         words = line.split()
-        if words[:2] == ["Step", "Temp"]:
-            on = True
+        if words and words[0] == "Step":
+            rows, width = [], len(words)
             continue
-        if on and words and words[0] == "Loop":
-            on = False
+        if rows is not None and words and words[0] == "Loop":
+            blocks.append(rows)
+            rows = None
             continue
-        if on and len(words) == 6:
-            rows.append([float(w) for w in words])
-    return rows
+        if rows is not None and len(words) == width:
+            try:
+                rows.append([float(w) for w in words])
+            except ValueError:
+                pass
+    return blocks[-1] if blocks else []
 
 
 def mean_and_error(values, blocks=20):
@@ -339,7 +345,8 @@ compute stress all stress/atom NULL virial
 compute sums all reduce sum c_pe c_stress[1] c_stress[2] c_stress[3]
 compute pv all pressure NULL virial
 variable trace equal -(c_sums[2]+c_sums[3]+c_sums[4])/(3*vol)"""
-    fix = f"{pair}\nfix 1 all dpd/split aboba 1.0 {GAMMA} 1.0 4321"
+    # The fix's r_c of each type pair at most the pair style's cutoff of that pair.
+    fix = f"{pair}\nfix 1 all dpd/split aboba 1.0 {GAMMA} 1.0 4321 coeff 1 2 {GAMMA} 0.9"
     return lammps_input(plugin, fix, steps, 0.04, max(steps, 1), n=n, extra=sums, types=2,
                         columns="step temp pe c_pv c_sums[1] v_trace")
 
@@ -384,6 +391,190 @@ def soft_pair(args):
         check(code != 0 and message in out and not crashed, f"bad input, dpd/soft with {what}: LAMMPS error containing {message!r}")
 
 
+# The two-type mixture of the per type-pair check: repulsion, friction and cutoff per type pair,
+# as pair dpd's pair_coeff takes them (a_12 > a_11 = a_22 makes the like-neighbour fraction
+# differ from the composition; gamma_22 = 4.4 gamma_11 makes type 2 relax faster).
+MIX = {(1, 1): (25.0, 4.5, 1.0), (1, 2): (40.0, 9.0, 0.9), (2, 2): (25.0, 20.0, 1.0)}
+
+
+def mixture_pairs(plugin_side, seed=4321):
+    """The mixture's force field: pair dpd (a, gamma, r_c per type pair) + fix nve, or
+    pair_style dpd/soft (a, r_c) + the fix's ABOBA with `coeff` (gamma, r_c) per type pair."""
+    if not plugin_side:
+        return (f"pair_style dpd 1.0 1.0 {seed}\n"
+                + "".join(f"pair_coeff {i} {j} {a} {g} {r}\n" for (i, j), (a, g, r) in MIX.items())
+                + "fix 1 all nve")
+    return ("pair_style dpd/soft 1.0\n"
+            + "".join(f"pair_coeff {i} {j} {a} {r}\n" for (i, j), (a, g, r) in MIX.items())
+            + f"fix 1 all dpd/split aboba 1.0 4.5 1.0 {seed}"
+            + "".join(f" coeff {i} {j} {g} {r}" for (i, j), (a, g, r) in MIX.items()))
+
+
+def per_pair(args):
+    """Per type-pair friction and cutoff (`coeff I J gamma r_c`) against LAMMPS's pair dpd with
+    the same pair_coeff values, both at dt = 0.01 (their own biases there are below 0.2 % of
+    k_B T), on the two-type mixture MIX, N = 3000 on 2 ranks (40 % type 2):
+    - equilibrium (500 + 1000 steps, 20 blocks): the plugin's T_K of each type against k_B T,
+      and the fraction of like neighbours within r = 1 around type 1 (compute coord/atom)
+      against pair dpd's, within 4 combined errors;
+    - friction: from the equilibrated state, type 2 heated to k_B T = 3 (velocity scale), T_K of
+      each type 0.1 and 0.3 time units later, mean over 4 seeds, within 4 combined errors of
+      the seeds' spread. A plugin using one friction for all pairs (4.5) relaxes type 2 at a
+      fifth to a half of the rate: with `coeff I J 4.5 r_c` for every pair these four checks
+      failed by 12 to 21 sigma (tried by hand, docs/lammps.md)."""
+    extra = """group t1 type 1
+group t2 type 2
+compute T1 t1 temp
+compute T2 t2 temp
+compute cn all coord/atom cutoff 1.0 1 2
+compute like t1 reduce ave c_cn[1] c_cn[2]
+variable frac equal c_like[1]/(c_like[1]+c_like[2])"""
+    columns = "step c_T1 c_T2 v_frac v_px v_py"
+    rows = {}
+    for side in (True, False):
+        name = "plugin" if side else "pair dpd"
+        text = lammps_input(args.plugin, mixture_pairs(side), 1500, 0.01, 5, extra=extra, types=2,
+                            columns=columns)
+        code, out = run_lammps(args, text, 2, "pairs-eq")
+        rows[name] = [r for r in thermo_rows(out) if r[0] > 500] if code == 0 else []
+        check(code == 0 and rows[name], f"mixture at equilibrium with {name} runs on 2 ranks"
+              + ("" if code == 0 else f": {out[-1500:]}"))
+    if all(rows.values()):
+        # Equipartition per type: the plugin's ABOBA against k_B T = 1 (its own T_K bias at dt =
+        # 0.01 is ~0.3 %, dt^2 from +26 % at dt = 0.1, below one standard error here). LAMMPS's
+        # velocity Verlet runs warmer at this dt (+1.0 % measured, its first-order friction
+        # error, larger for gamma_22 = 20): printed, not compared.
+        for col in (1, 2):
+            a, b = (mean_and_error([r[col] for r in rows[k]]) for k in ("plugin", "pair dpd"))
+            check(agree(a, (1.0, 0.0)), f"mixture dt=0.01 2 ranks, T_K of type {col}: plugin {a[0]:.4f} +- "
+                                        f"{a[1]:.4f} vs k_B T = 1 ({sigmas_apart(a, (1.0, 0.0)):.1f} sigma; "
+                                        f"pair dpd + fix nve {b[0]:.4f} +- {b[1]:.4f})")
+        a, b = (mean_and_error([r[3] for r in rows[k]]) for k in ("plugin", "pair dpd"))
+        check(agree(a, b), f"mixture dt=0.01 2 ranks, like-neighbour fraction of type 1: plugin {a[0]:.4f} "
+                           f"+- {a[1]:.4f} vs pair dpd + fix nve {b[0]:.4f} +- {b[1]:.4f} ({sigmas_apart(a, b):.1f} sigma)")
+    heat = extra + "\nrun 200\nvelocity t2 scale 3.0\nreset_timestep 0"
+    curves = {}
+    for side in (True, False):
+        name = "plugin" if side else "pair dpd"
+        samples = []
+        for seed in range(4):
+            text = lammps_input(args.plugin, mixture_pairs(side, seed=4321 + seed), 30, 0.01, 10,
+                                seed=2024 + 7 * seed, extra=heat, types=2, columns=columns)
+            code, out = run_lammps(args, text, 2, "pairs-heat")
+            got = {round(r[0]): r for r in thermo_rows(out)} if code == 0 else {}
+            if code != 0 or 10 not in got or 30 not in got:
+                check(False, f"mixture heated with {name} runs: {out[-1500:]}")
+                return
+            samples.append(got)
+        curves[name] = samples
+    for step in (10, 30):
+        for col in (1, 2):
+            a, b = ((sum(s[step][col] for s in curves[k]) / 4,
+                     math.sqrt(sum((s[step][col] - sum(t[step][col] for t in curves[k]) / 4) ** 2
+                                   for s in curves[k]) / 3 / 4)) for k in ("plugin", "pair dpd"))
+            check(agree(a, b), f"type {col} heated to 3, t = {step * 0.01:g}: T_K plugin {a[0]:.4f} +- "
+                               f"{a[1]:.4f} vs pair dpd {b[0]:.4f} +- {b[1]:.4f} ({sigmas_apart(a, b):.1f} sigma)")
+
+
+def restart(args):
+    """A restart continues statistically: ABOBA on 2 ranks, 2 x S steps straight against S steps,
+    write_restart, then S steps from read_restart in a new LAMMPS run (the fix given again: it
+    keeps no state; the noise is keyed by the step, which the restart carries). The state at the
+    restart step reads back (positions and velocities are written as doubles: the thermo row of
+    step S agrees to 1e-12, to the order of the sums, since the atoms are distributed in
+    another order); after it the neighbour lists are built in that order, so the sweep order and
+    then the trajectory differ, and T_K and pressure over the last S - S/4 steps agree within 4
+    combined errors."""
+    steps, dt = args.steps, args.dt
+    fix = plugin_fix("aboba")
+    straight = lammps_input(args.plugin, fix, 2 * steps, dt, 5)
+    code, out = run_lammps(args, straight, 2, "restart-straight")
+    whole = thermo_rows(out) if code == 0 else []
+    check(code == 0 and whole, "restart: the straight run runs")
+    first = lammps_input(args.plugin, fix, steps, dt, 5).replace(
+        f"run {steps}\n", f"run {steps}\nwrite_restart {os.path.join(args.work, 'split.restart')}\n")
+    code, out = run_lammps(args, first, 2, "restart-first")
+    check(code == 0, "restart: the first half runs and writes its restart file")
+    second = f"""
+read_restart {os.path.join(args.work, 'split.restart')}
+comm_modify vel yes
+neighbor {SKIN} bin
+neigh_modify every 1 delay 0 check yes
+plugin load {args.plugin}
+{fix}
+variable px equal mass(all)*vcm(all,x)
+variable py equal mass(all)*vcm(all,y)
+variable pz equal mass(all)*vcm(all,z)
+thermo_style custom step temp press v_px v_py v_pz
+thermo_modify format float %.17g norm no
+thermo 5
+run {steps}
+"""
+    code, out = run_lammps(args, second, 2, "restart-second")
+    rest = thermo_rows(out) if code == 0 else []
+    check(code == 0 and rest, "restart: the second half runs from the restart file"
+          + ("" if code == 0 else f": {out[-1500:]}"))
+    if not (whole and rest):
+        return
+    at = {round(r[0]): r for r in whole}
+    worst = max(abs(a - b) / abs(b) for a, b in zip(rest[0][1:3], at[steps][1:3]))
+    check(worst < 1e-12, f"restart: step {steps} reads back (T and P to {worst:.0e} relative: "
+                         f"the atoms' order, and so that of the sums, differs)")
+    later = [r for r in rest if r[0] > steps + steps // 4]
+    same = [r for r in whole if r[0] > steps + steps // 4]
+    for col, key in ((1, "T_K"), (2, "pressure")):
+        a, b = mean_and_error([r[col] for r in later]), mean_and_error([r[col] for r in same])
+        check(agree(a, b), f"restart: {key} after the restart {a[0]:.4f} +- {a[1]:.4f} vs straight "
+                           f"{b[0]:.4f} +- {b[1]:.4f} ({sigmas_apart(a, b):.1f} sigma)")
+    differ = any(r[1] != at[round(r[0])][1] for r in rest if round(r[0]) in at)
+    print(f"     ... the restarted trajectory {'differs from' if differ else 'repeats'} the straight "
+          f"one bitwise after step {steps}", flush=True)
+
+
+def temp_split(args):
+    """compute temp/split: the kinetic temperature after a stage of the scheme. In CI: with
+    `stage 5` (ABOBA's last stage) it is the end-of-step temperature of compute temp to 1e-12
+    relative (only the order of the sums differs), and by default (after the O stage) it is
+    not. With --bias (by hand): each scheme of --scheme at --dt on 1 rank, the end-of-step T_K,
+    that of temp/split after the last sweep stage (and after the first stage), against `dpd
+    run`'s end-of-step T_K (docs/lammps.md, "Which kinetic temperature")."""
+    extra = "compute ts all temp/split 1\ncompute te all temp/split 1 stage 5"
+    text = lammps_input(args.plugin, plugin_fix("aboba"), 100, args.dt, 10, extra=extra,
+                        columns="step temp c_ts c_te v_px v_py")
+    code, out = run_lammps(args, text, 2, "temp-split")
+    rows = thermo_rows(out) if code == 0 else []
+    check(code == 0 and len(rows) == 11, "compute temp/split runs beside fix dpd/split on 2 ranks"
+          + ("" if code == 0 else f": {out[-1500:]}"))
+    if rows:
+        worst = max(abs(r[3] - r[1]) / r[1] for r in rows)
+        check(worst < 1e-12, f"temp/split stage 5 (ABOBA's end of step) is compute temp (worst "
+                             f"relative difference {worst:.1e})")
+        check(all(r[2] != r[1] for r in rows[1:]), "temp/split after ABOBA's O stage differs from "
+                                                    "the end-of-step temperature")
+    code, out = run_lammps(args, lammps_input(args.plugin, plugin_fix("aboba"), 10, args.dt, 10,
+                                              extra="compute ts all temp/split 1 stage 6"), 1, "temp-split-bad")
+    check(code != 0 and "stage 6 beyond the 5 stages" in out, "temp/split refuses a stage beyond the scheme's")
+    if not args.bias:
+        return
+    dt, steps = args.dt, args.steps
+    equil = steps // 4
+    print(f"| scheme (dt = {dt}) | dpd run T_K | plugin T_K (end of step) | temp/split (after the "
+          f"last sweep) | temp/split (after stage 1) |", flush=True)
+    for ident in args.scheme:
+        ref = dpd_run(args, SCHEMES[ident], dt, dt * (equil + steps), args.dpd_runs)[0]
+        extra = "compute ts all temp/split 1\ncompute t1 all temp/split 1 stage 1"
+        text = lammps_input(args.plugin, plugin_fix(ident), equil + steps, dt, 5, extra=extra,
+                            columns="step temp c_ts c_t1 v_px v_py")
+        code, out = run_lammps(args, text, 1, f"bias-{ident}")
+        rows = [r for r in thermo_rows(out) if r[0] > equil] if code == 0 else []
+        if not rows:
+            check(False, f"bias run of {ident}: {out[-1500:]}")
+            continue
+        cells = [mean_and_error([r[c] for r in rows]) for c in (1, 2, 3)]
+        print(f"| {SCHEMES[ident]} | {ref[0]:.4f}({ref[1] * 1e4:.0f}) | "
+              + " | ".join(f"{m:.4f}({e * 1e4:.0f})" for m, e in cells) + " |", flush=True)
+
+
 def bad_input(args):
     cases = [
         ("unknown scheme", "fix 1 all dpd/split abobq 1.0 4.5 1.0 4321", "scheme 'abobq' is not compiled"),
@@ -394,6 +585,8 @@ def bad_input(args):
         ("bad seed", "fix 1 all dpd/split aboba 1.0 4.5 1.0 -3", "seed = '-3' must be a positive integer"),
         ("unknown keyword", "fix 1 all dpd/split aboba 1.0 4.5 1.0 4321 exponant 1", "unknown keyword 'exponant'"),
         ("r_c beyond the pair cutoff", "fix 1 all dpd/split aboba 1.0 4.5 1.5 4321", "exceeds the pair style's cutoff"),
+        ("a negative gamma of a type pair", "fix 1 all dpd/split aboba 1.0 4.5 1.0 4321 coeff 1 1 -2 1.0",
+         "type pair 1 1"),
         ("T without dpd/soft", "fix 1 all dpd/split sas 1.0 4.5 1.0 4321",
          "the only pair style must be this plugin's dpd/soft (got 'dpd')"),
     ]
@@ -405,6 +598,20 @@ def bad_input(args):
         ("T with a conservative cutoff beyond r_c",
          "pair_style dpd/soft 1.2\npair_coeff 1 1 25.0\nfix 1 all dpd/split sas 1.0 4.5 1.0 4321",
          "pair_coeff 1 1 has cutoff 1.2 beyond the fix's r_c = 1"),
+        ("a second fix dpd/split", pair_dpd + "fix 1 all dpd/split aboba 1.0 4.5 1.0 4321\n"
+         "fix 2 all dpd/split vv 1.0 4.5 1.0 99", "fix 2 (style dpd/split) also integrates"),
+        ("fix nve next to the fix", pair_dpd + "fix 1 all dpd/split aboba 1.0 4.5 1.0 4321\n"
+         "fix 2 all nve", "fix 2 (style nve) also integrates"),
+        ("pair dpd with friction", "pair_style dpd 1.0 1.0 999\npair_coeff 1 1 25.0 4.5 1.0\n"
+         "fix 1 all dpd/split aboba 1.0 4.5 1.0 4321",
+         "pair style dpd has friction gamma > 0 for types 1 1 (4.5)"),
+        ("pair dpd/tstat in a hybrid", "pair_style hybrid/overlay dpd/soft 1.0 dpd/tstat 1.0 1.0 1.0 77\n"
+         "pair_coeff 1 1 dpd/soft 25.0\npair_coeff 1 1 dpd/tstat 2.0\n"
+         "fix 1 all dpd/split aboba 1.0 4.5 1.0 4321", "pair style dpd/tstat has friction gamma > 0"),
+        ("a type pair's r_c beyond the pair cutoff", pair_dpd + "fix 1 all dpd/split aboba 1.0 4.5 1.0 "
+         "4321 coeff 1 1 4.5 1.2", "r_c = 1.2 of types 1 1 exceeds the pair style's cutoff 1"),
+        ("coeff with too few values", pair_dpd + "fix 1 all dpd/split aboba 1.0 4.5 1.0 4321 coeff 1 1 4.5",
+         "keyword 'coeff' needs 4 value(s)"),
     ]
     for what, integrator, message in cases:
         # 500 atoms: side 5.5, above the subdomain size limit checked before the T inputs.
@@ -412,6 +619,12 @@ def bad_input(args):
         code, out = run_lammps(args, text, 1, "bad")
         crashed = "signal" in out.lower() or "segmentation" in out.lower()
         check(code != 0 and message in out and not crashed, f"bad input, {what}: LAMMPS error containing {message!r}")
+    # On purpose: `exclusive no` lets fix nve run beside the fix (here with zero friction, so
+    # that the run is only a check that the combination is accepted).
+    text = lammps_input(args.plugin, pair_dpd + "fix 1 all dpd/split aboba 1.0 0.0 1.0 4321 exclusive no\n"
+                        "fix 2 all nve", 10, 0.04, 10, n=500)
+    code, out = run_lammps(args, text, 1, "allowed")
+    check(code == 0, "exclusive no: fix nve beside the fix is accepted on purpose")
     small = lammps_input(args.plugin, plugin_fix("aboba"), 10, 0.04, 10, n=150, side=4.0)
     code, out = run_lammps(args, small, 1, "small")
     check(code != 0 and "is below 4 r_c + 2 skin" in out, "a box of side 4 on 1 rank is refused (below 4 r_c + 2 skin)")
@@ -441,15 +654,18 @@ def main():
     p.add_argument("--ranks", type=int, action="append", help="equilibrium: rank counts (default 1 and 2)")
     p.add_argument("--native", action=argparse.BooleanOptionalAction, default=True,
                    help="equilibrium: also the plugin's VV against pair dpd + fix nve")
+    p.add_argument("--bias", action="store_true",
+                   help="temp: measure each --scheme's temp/split against dpd run (by hand)")
     p.add_argument("--shear-time", type=float, default=400.0, help="shear: time units per run")
-    p.add_argument("--only", choices=["equilibrium", "repeat", "bad", "shear", "soft", "trotter"],
+    p.add_argument("--only", choices=["equilibrium", "repeat", "bad", "shear", "soft", "trotter", "pairs", "restart", "temp"],
                    action="append")
     args = p.parse_args()
-    args.scheme = args.scheme or list(SCHEMES)
+    args.scheme = args.scheme or [k for k in SCHEMES if k != "dpd_s1"]
     args.ranks = args.ranks or [1, 2]
     os.makedirs(args.work, exist_ok=True)
     parts = {"bad": bad_input, "repeat": repeat_and_momentum, "equilibrium": equilibrium,
-             "shear": shear, "soft": soft_pair, "trotter": trotter}
+             "shear": shear, "soft": soft_pair, "trotter": trotter, "pairs": per_pair,
+             "restart": restart, "temp": temp_split}
     for name in args.only or ["bad", "repeat", "equilibrium"]:
         parts[name](args)
     if FAILURES:
