@@ -1,9 +1,9 @@
 //! The LAMMPS plugin source tree of `dpd export lammps` (docs/lammps.md): the fixed runtime of
-//! `lammps/plugin/` (embedded at compile time), a generated `schemes.cpp` with the stage table
-//! of every exported scheme (dpd-ir's merged [`Program`] stages, the ones `dpd check`
-//! analyses), and a `CMakeLists.txt` that builds the `dpd-lammps` kernels of this workspace
-//! with cargo (a path to the workspace is written into it: the exporter knows where its
-//! sources are from `CARGO_MANIFEST_DIR` at compile time) and links them into the plugin.
+//! `lammps/plugin/` (embedded at compile time, its `CMakeLists.txt` included), a generated
+//! `schemes.cpp` with the stage table of every exported scheme (dpd-ir's merged [`Program`]
+//! stages, the ones `dpd check` analyses), and the `dpd-lammps` kernels as a prebuilt static
+//! library, `kernels/libdpd_lammps.a`, so that the tree builds with CMake, a C++17 compiler and
+//! LAMMPS alone.
 
 use dpd::lang::{compile_with, Options};
 use dpd::schemes::registry::lookup;
@@ -12,7 +12,19 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 /// The fixed runtime: file name and contents.
-const RUNTIME: [(&str, &str); 9] = [
+const RUNTIME: [(&str, &str); 12] = [
+    (
+        "compute_temp_split.h",
+        include_str!("../../../lammps/plugin/compute_temp_split.h"),
+    ),
+    (
+        "compute_temp_split.cpp",
+        include_str!("../../../lammps/plugin/compute_temp_split.cpp"),
+    ),
+    (
+        "CMakeLists.txt",
+        include_str!("../../../lammps/plugin/CMakeLists.txt"),
+    ),
     (
         "fix_dpd_split.h",
         include_str!("../../../lammps/plugin/fix_dpd_split.h"),
@@ -48,10 +60,11 @@ const RUNTIME: [(&str, &str); 9] = [
     ),
 ];
 
-/// The CMake project, with `@WORKSPACE@` standing for the workspace's directory.
-const CMAKE: &str = include_str!("../../../lammps/plugin/CMakeLists.txt");
+/// Where the static library of the kernels goes in the tree.
+pub const KERNELS: &str = "kernels/libdpd_lammps.a";
 
-/// The workspace holding `lammps/kernels`, as compiled in.
+/// The workspace holding `lammps/kernels`, as compiled in (the exporter builds the kernels
+/// there with cargo unless given a library).
 pub fn workspace() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .parent()
@@ -204,16 +217,28 @@ pub fn schemes_cpp(schemes: &[Exported]) -> String {
     out
 }
 
-/// The plugin source tree for `schemes` in `dir` (created if missing), building kernels from
-/// the workspace `workspace`.
-pub fn write_tree(dir: &Path, schemes: &[Exported], workspace: &Path) -> std::io::Result<()> {
-    std::fs::create_dir_all(dir)?;
+/// The plugin source tree for `schemes` in `dir` (created if missing), with a copy of the
+/// kernels' static library `kernels` and `provenance`, one line saying what built it.
+pub fn write_tree(
+    dir: &Path,
+    schemes: &[Exported],
+    kernels: &Path,
+    provenance: &str,
+) -> std::io::Result<()> {
+    std::fs::create_dir_all(dir.join("kernels"))?;
     for (name, text) in RUNTIME {
         std::fs::write(dir.join(name), text)?;
     }
     std::fs::write(dir.join("schemes.cpp"), schemes_cpp(schemes))?;
-    let cmake = CMAKE.replace("@WORKSPACE@", &workspace.display().to_string());
-    std::fs::write(dir.join("CMakeLists.txt"), cmake)
+    std::fs::copy(kernels, dir.join(KERNELS))?;
+    std::fs::write(
+        dir.join("kernels/README.md"),
+        format!(
+            "# The dpd-lammps kernels\n\n`libdpd_lammps.a`: the pair physics of the plugin (the Rust \
+             crate `dpd-lammps` of the dpd workspace, calling dpd-core's pair updates), a static \
+             library with the C ABI of `../dpd_lammps.h`, licensed MIT. {provenance}\n"
+        ),
+    )
 }
 
 /// Identifiers made unique by a numeric suffix where two schemes would share one.
