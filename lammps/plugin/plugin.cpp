@@ -3,10 +3,8 @@
    "Writing plugins" documentation gives. SPDX-License-Identifier: MIT */
 
 #include "compute_temp_split.h"
-#include "error.h"
 #include "fix_dpd_split.h"
 #include "lammps.h"
-#include "library.h"
 #include "pair_dpd_soft.h"
 
 using namespace LAMMPS_NS;
@@ -51,17 +49,6 @@ Pair *create_pair(LAMMPS *lmp)
 
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
 {
-  // The plugin must be compiled with the integer sizes of the LAMMPS that loads it (its atom
-  // IDs, image flags and step counters are read through them): refuse a mismatch rather than
-  // read past arrays.
-  int tag = lammps_extract_setting(lmp, "tagint"), image = lammps_extract_setting(lmp, "imageint");
-  int big = lammps_extract_setting(lmp, "bigint");
-  if (tag != (int) sizeof(tagint) || image != (int) sizeof(imageint) || big != (int) sizeof(bigint))
-    static_cast<LAMMPS *>(lmp)->error->all(
-        FLERR, "dpdsplitplugin: built for tagint, imageint, bigint of {}, {}, {} bytes, but this "
-        "LAMMPS has {}, {}, {}: rebuild the plugin with this LAMMPS's integer sizes "
-        "(its CMake package, or LAMMPS_SIZES)", sizeof(tagint), sizeof(imageint), sizeof(bigint),
-        tag, image, big);
   PluginRecord plugin;
   plugin.version = static_cast<LAMMPS *>(lmp)->version;
   plugin.author = "the dpd workspace";

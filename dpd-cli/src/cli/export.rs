@@ -183,16 +183,12 @@ enum Lammps<'a> {
 }
 
 /// The integer sizes in a LAMMPS CMake package's targets file (`LAMMPS_SMALLBIG` ...), as
-/// `smallbig`, `bigbig` or `smallsmall`.
+/// `smallbig` or `bigbig` (LAMMPS's headers refuse its former `LAMMPS_SMALLSMALL`).
 fn sizes_of(targets: &str) -> Option<&'static str> {
-    ["SMALLBIG", "BIGBIG", "SMALLSMALL"]
+    [("SMALLBIG", "smallbig"), ("BIGBIG", "bigbig")]
         .into_iter()
-        .find(|s| targets.contains(&format!("LAMMPS_{s}")))
-        .map(|s| match s {
-            "SMALLBIG" => "smallbig",
-            "BIGBIG" => "bigbig",
-            _ => "smallsmall",
-        })
+        .find(|(define, _)| targets.contains(&format!("LAMMPS_{define}")))
+        .map(|(_, sizes)| sizes)
 }
 
 /// The cmake definitions for the `lammps` package of `python`, and the cmake to use (the

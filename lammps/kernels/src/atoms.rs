@@ -4,8 +4,8 @@
 use crate::{DPD_LAMMPS_INDEX, DPD_LAMMPS_OK, DPD_LAMMPS_TAG, DPD_LAMMPS_TYPE};
 use std::ffi::c_int;
 
-/// Global atom ids (LAMMPS's `tagint`): 32-bit in LAMMPS's default and `smallsmall` integer
-/// sizes, 64-bit with `-DLAMMPS_BIGBIG`. The pair noise is keyed by 32-bit ids, so a tag must
+/// Global atom ids (LAMMPS's `tagint`): 32-bit in LAMMPS's default integer sizes, 64-bit with
+/// `-DLAMMPS_BIGBIG`. The pair noise is keyed by 32-bit ids, so a tag must
 /// lie in `0..=u32::MAX` whatever its width ([`Atoms::check`]).
 #[derive(Clone, Copy, Debug)]
 pub enum Tags<'a> {
