@@ -28,8 +28,8 @@ pub struct Args {
     /// pair-distance evaluations) or `error` (higher deterministic order, then the smaller
     /// invariant-measure error norm, then the smaller deterministic error norm, then cost) or
     /// `predicted` (the longest predicted critical step of 10 % T_C error, `dpd predict`, per
-    /// force evaluation; the harmonic prediction cannot see the error of schemes that are
-    /// exact on Gaussians, so the bound still comes first)
+    /// force evaluation; the prediction sees the error of schemes exact on Gaussians only
+    /// through its anharmonic correction, so the bound still comes first)
     #[arg(long, value_enum, default_value_t = Rank::Cost)]
     rank: Rank,
     /// The modes `--rank predicted` predicts on
