@@ -154,12 +154,12 @@ std::string positive_friction(Pair *pair, const Thermostat &t)
 
 FixDPDSplit::FixDPDSplit(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), scheme(nullptr), kt(0.0), exponent(2.0), max_rc(0.0), seed(0),
-    exclusive(true), kernels(nullptr), list(nullptr), soft(nullptr), split(0),
+    exclusive(true), tally_end(true), kernels(nullptr), list(nullptr), soft(nullptr), split(0),
     last_drift(-1), forces_stale(false), ghosts_stale(false), step_eflag(0), step_vflag(0),
     epoch(0), full_epoch(-1), colour_build(-1), comm_mode(COMM_V), full_virial{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}
 {
   const char *usage = "fix ID group dpd/split SCHEME kT gamma r_c seed [exponent s] "
-                      "[coeff I J gamma r_c] ... [exclusive yes|no]";
+                      "[coeff I J gamma r_c] ... [exclusive yes|no] [tally end|evaluation]";
   if (narg < 8)
     error->all(FLERR, "fix dpd/split: expected {} (at least 5 arguments after 'fix ID group'), "
                "got {}", usage, narg - 3);
@@ -224,9 +224,16 @@ FixDPDSplit::FixDPDSplit(LAMMPS *lmp, int narg, char **arg) :
       values(1);
       exclusive = utils::logical(FLERR, arg[k + 1], false, lmp);
       k += 2;
+    } else if (strcmp(arg[k], "tally") == 0) {
+      values(1);
+      if (strcmp(arg[k + 1], "end") != 0 && strcmp(arg[k + 1], "evaluation") != 0)
+        error->all(FLERR, "fix dpd/split: tally = '{}' must be 'end' or 'evaluation' ({})",
+                   arg[k + 1], usage);
+      tally_end = strcmp(arg[k + 1], "end") == 0;
+      k += 2;
     } else {
-      error->all(FLERR, "fix dpd/split: unknown keyword '{}'; the keywords are exponent, coeff "
-                 "and exclusive ({})", arg[k], usage);
+      error->all(FLERR, "fix dpd/split: unknown keyword '{}'; the keywords are exponent, coeff, "
+                 "exclusive and tally ({})", arg[k], usage);
     }
   }
   max_rc = 0.0;
@@ -501,10 +508,10 @@ void FixDPDSplit::final_integrate()
   forces_stale = ghosts_stale = false;
   ++epoch;
   run_stages(split, scheme->nstages);
-  // Observables at the step's end: when the last force evaluation of the step came before its
-  // last drift, re-evaluate forces (and so energy and virial) at the final positions on steps
-  // where a compute needs them.
-  if (forces_stale && (step_eflag || step_vflag)) refresh(step_eflag, step_vflag);
+  // Observables at the step's end (`tally end`): when the last force evaluation of the step
+  // came before its last drift, re-evaluate forces (and so energy and virial) at the final
+  // positions on steps where LAMMPS asks for energy or virial (every thermo step).
+  if (tally_end && forces_stale && (step_eflag || step_vflag)) refresh(step_eflag, step_vflag);
 }
 
 void FixDPDSplit::run_stages(int from, int to)

@@ -49,6 +49,10 @@ class FixDPDSplit : public Fix {
   /// Refuse other integrators and pair styles with their own DPD thermostat (keyword
   /// `exclusive`, default yes).
   bool exclusive;
+  /// Energy and virial on the steps LAMMPS tallies them: at the step's final positions, with a
+  /// force evaluation of their own if the step ends with a drift (keyword `tally end`, the
+  /// default), or as LAMMPS's evaluation within the step tallied them (`tally evaluation`).
+  bool tally_end;
   DpdLammpsKernels *kernels;
   class NeighList *list;
   /// The conservative force of T stages (null when the scheme has none), set by init().
