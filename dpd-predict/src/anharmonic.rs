@@ -20,10 +20,12 @@
 //!
 //! Between them each mode is weighted by `theta = zeta / (1 + zeta)`, `zeta = gamma / (2
 //! omega)` its damping ratio: an interpolation, not derived (docs/design.md measures it).
-//! The spectrum grows with the pairs inside the cut-off, `ln w ~ eps X(q)` with `X` the pair
-//! network's trace and `eps = sum_k lambda_k g'(lambda_k) / sum_k lambda_k`; to first order
-//! T_C then moves by `eps R`, the response `R = Cov(|F|^2, X) / <|F|^2> - Cov(lap U, X) /
-//! <lap U>` measured on equilibrium configurations ([`response`]).
+//! A pair entering the cut-off adds a spring along a mass-weighted direction `u`, which moves
+//! `lambda_k` by `phi'' (u.v_k)^2` at first order; averaged over the network's own pair
+//! directions (`sum_pairs phi'' (u.v_k)^2 = lambda_k`) it moves `ln w` by `eps` per unit of
+//! the network's trace `X`, `eps = sum_k lambda_k g'(lambda_k) / sum_k lambda_k`. So `ln w ~
+//! eps X(q)`, and to first order T_C moves by `eps R`, the response `R = Cov(|F|^2, X) /
+//! <|F|^2> - Cov(lap U, X) / <lap U>` measured on equilibrium configurations ([`response`]).
 
 use crate::network::{pairs, NetworkError, PairModel};
 use crate::spectrum::Mode;
