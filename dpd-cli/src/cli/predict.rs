@@ -1,6 +1,6 @@
 //! `dpd predict`: a scheme's errors and critical steps predicted from the exact stationary
-//! statistics of its linear step on the fluid's harmonic modes ([`dpd_predict`]), without
-//! running it.
+//! statistics of its linear step on the fluid's harmonic modes, T_C's with the leading
+//! anharmonic correction ([`dpd_predict`]), without running it.
 
 use super::{bad_input, print_json};
 use dpd::metropolis::Metropolis;
