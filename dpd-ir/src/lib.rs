@@ -4,9 +4,11 @@
 
 pub mod analysis;
 pub mod design;
+pub mod forces;
 pub mod lang;
 pub mod program;
 
 pub use analysis::{analyse, Analysis};
+pub use forces::ForceGroup;
 pub use lang::{compile, compile_with, Diagnostic, Options};
 pub use program::{Coeff, Evaluations, Flow, Program, Stage, SweepOrder};

@@ -6,6 +6,7 @@
 //! same core function for each [`Stage`] with the same `f64` coefficient, which is what makes
 //! macro-generated and dynamic schemes bitwise identical.
 
+use crate::forces::ForceGroup;
 use num_rational::BigRational;
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -99,6 +100,18 @@ pub struct Stage {
     pub stream: u8,
     /// Visiting order of a successive sweep (`Forward` for all other flows).
     pub order: SweepOrder,
+    /// The forces a kick applies: `None` for the letter's own (all forces for B and F, the
+    /// pair forces for T, none for A, O and Ob), or the one force group a B or F stage names
+    /// (`B[bond]`, module [`crate::forces`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub group: Option<ForceGroup>,
+}
+
+impl Stage {
+    /// Whether the stage applies the forces of `g` (module [`crate::forces`]).
+    pub fn applies(&self, g: ForceGroup) -> bool {
+        crate::forces::applies(self.flow, self.group, g)
+    }
 }
 
 /// A compiled scheme: the stages of one step, as run.
@@ -119,27 +132,38 @@ pub struct Program {
 pub const SYMMETRY_TOLERANCE: f64 = 1e-14;
 
 /// Work of one step in the cyclic steady state (the step repeated, evaluations reused across
-/// the step boundary).
+/// the step boundary). Pair and bonded evaluations are counted apart: a bonded evaluation
+/// visits the bond list only and costs little next to a pair evaluation.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Evaluations {
-    /// Force evaluations: conservative (for B), full (for F), and one per T sweep.
+    /// Pair-force evaluations: conservative (for B and B[pair]), full (for F and F[pair]), and
+    /// one per T sweep.
     pub force: usize,
     /// Pair-distance (geometry) evaluations.
     pub pair_distance: usize,
+    /// Bonded-force evaluations (for B, F and B[bond]), on a system with bonded forces; a
+    /// system without them evaluates none.
+    pub bonded_force: usize,
 }
 
 impl Program {
     /// Evaluations per step under the run-time caching rules of `dpd-core`: A moves the
-    /// particles and invalidates every cache; B, O, Ob, T and F need the pair geometry of the
-    /// current positions; B needs a conservative-force evaluation and F a full-force
-    /// evaluation of the current positions, each cached until positions change; every T sweep
-    /// evaluates the conservative pair force inline.
+    /// particles and invalidates every cache; every stage but `B[bond]` needs the pair
+    /// geometry of the current positions; B and B[pair] need a conservative pair-force
+    /// evaluation and F and F[pair] a full pair-force evaluation of the current positions,
+    /// each cached until positions change; every T sweep evaluates the conservative pair force
+    /// inline; B, F and B[bond] need the bonded forces, cached the same way.
     pub fn evaluations_per_step(&self) -> Evaluations {
         #[derive(Default)]
         struct Cache {
             geometry: bool,
             conservative: bool,
             full: bool,
+            bonded: bool,
+        }
+        // Whether `fresh` was stale, which makes it fresh.
+        fn evaluate(fresh: &mut bool) -> usize {
+            usize::from(!std::mem::replace(fresh, true))
         }
         let mut cache = Cache::default();
         let mut count = Evaluations::default();
@@ -151,20 +175,38 @@ impl Program {
                     cache = Cache::default();
                     continue;
                 }
-                if !cache.geometry {
-                    cache.geometry = true;
-                    count.pair_distance += 1;
+                // Every stage reads the pair table but a kick of the bonded forces alone.
+                let pair =
+                    !matches!(stage.flow, Flow::B | Flow::F) || stage.applies(ForceGroup::Pair);
+                if pair {
+                    count.pair_distance += evaluate(&mut cache.geometry);
                 }
-                let force = match stage.flow {
-                    Flow::B => !std::mem::replace(&mut cache.conservative, true),
-                    Flow::F => !std::mem::replace(&mut cache.full, true),
-                    Flow::T => true,
-                    _ => false,
+                count.force += match stage.flow {
+                    Flow::B if pair => evaluate(&mut cache.conservative),
+                    Flow::F if pair => evaluate(&mut cache.full),
+                    Flow::T => 1,
+                    _ => 0,
                 };
-                count.force += usize::from(force);
+                if stage.applies(ForceGroup::Bond) {
+                    count.bonded_force += evaluate(&mut cache.bonded);
+                }
             }
         }
         count
+    }
+
+    /// The force groups the stages name (`B[bond]` names the bonded forces), each once: a
+    /// system must have each of them to run the program.
+    pub fn named_groups(&self) -> Vec<ForceGroup> {
+        ForceGroup::ALL
+            .into_iter()
+            .filter(|&g| self.stages.iter().any(|s| s.group == Some(g)))
+            .collect()
+    }
+
+    /// Whether some stage applies the forces of `g`: a system that has them needs it.
+    pub fn applies(&self, g: ForceGroup) -> bool {
+        self.stages.iter().any(|s| s.applies(g))
     }
 
     /// Order analysis of the step (algorithms.md section 4).
@@ -180,6 +222,11 @@ impl Program {
     /// Pair-distance evaluations per step, see [`Program::evaluations_per_step`].
     pub fn pair_distance_evaluations_per_step(&self) -> usize {
         self.evaluations_per_step().pair_distance
+    }
+
+    /// Bonded-force evaluations per step, see [`Program::evaluations_per_step`].
+    pub fn bonded_force_evaluations_per_step(&self) -> usize {
+        self.evaluations_per_step().bonded_force
     }
 
     /// Whether the merged step reads the same backwards: mirrored stages have the same flow
@@ -204,7 +251,10 @@ impl Program {
     pub fn is_cyclically_symmetric(&self) -> bool {
         let mut cycle = self.stages.clone();
         if let [first, .., last] = &cycle[..] {
-            if first.flow == last.flow && !first.flow.is_successive_sweep() {
+            if first.flow == last.flow
+                && first.group == last.group
+                && !first.flow.is_successive_sweep()
+            {
                 let joined = Coeff {
                     value: first.coeff.value + last.coeff.value,
                     exact: first
@@ -230,12 +280,13 @@ impl Program {
     }
 }
 
-/// Whether stages `a` and `b` are mirror images in a step read backwards: same flow and
-/// coefficient, and successive sweeps in opposite orders (the adjoint of a sweep is the
+/// Whether stages `a` and `b` are mirror images in a step read backwards: same flow, force
+/// group and coefficient, and successive sweeps in opposite orders (the adjoint of a sweep is the
 /// reversed sweep). A stage mirrored onto itself always is.
 fn mirrored(a: &Stage, b: &Stage) -> bool {
     std::ptr::eq(a, b)
         || (a.flow == b.flow
+            && a.group == b.group
             && coeffs_equal(&a.coeff, &b.coeff)
             && (!a.flow.is_successive_sweep() || a.order != b.order))
 }
@@ -285,7 +336,8 @@ fn seventeen_digits(x: f64) -> String {
 }
 
 impl fmt::Display for Program {
-    /// The merged stages in the scheme language, e.g. `A(1/2) B(1/2) O(1) B(1/2) A(1/2)`.
+    /// The merged stages in the scheme language, e.g. `A(1/2) B(1/2) O(1) B(1/2) A(1/2)` or
+    /// `B[pair](1/2) B[bond](1/8) A(1/4)`.
     /// A sweep whose order differs from the default alternation is marked `<` (reverse) or
     /// `>` (forward), so the output compiles back to the same stages (except the shared
     /// noise of PRK tables). The alternate form `{:#}` marks the order of every sweep and the
@@ -297,6 +349,9 @@ impl fmt::Display for Program {
                 f.write_str(" ")?;
             }
             f.write_str(crate::lang::letters::spelling(stage.flow))?;
+            if let Some(g) = stage.group {
+                write!(f, "[{}]", crate::lang::letters::group_spelling(g))?;
+            }
             if stage.flow.is_successive_sweep() {
                 let default = SweepOrder::alternating(sweeps);
                 sweeps += 1;

@@ -25,6 +25,7 @@ fn stage(flow: Flow, coeff: Coeff) -> Stage {
         coeff,
         stream: 0,
         order: SweepOrder::Forward,
+        group: None,
     }
 }
 

@@ -1,6 +1,6 @@
 //! The generated scheme: a zero-sized type whose `step` calls the sub-flows in a straight line.
 
-use dpd_ir::{Flow, Program, Stage, SweepOrder};
+use dpd_ir::{Flow, ForceGroup, Program, Stage, SweepOrder};
 use proc_macro2::{Literal, Span, TokenStream};
 use quote::quote;
 use syn::{Ident, LitInt};
@@ -77,13 +77,28 @@ fn stage_value(stage: &Stage, rt: &TokenStream) -> TokenStream {
     let flow = Ident::new(&format!("{:?}", stage.flow), Span::call_site());
     let stream = Literal::u8_suffixed(stage.stream);
     let order = sweep_order(stage.order, rt);
+    let group = match stage.group {
+        Some(g) => {
+            let g = force_group(g, rt);
+            quote!(::core::option::Option::Some(#g))
+        }
+        None => quote!(::core::option::Option::None),
+    };
     quote! {
         #rt::Stage {
             flow: #rt::Flow::#flow,
             coeff: #rt::coeff(#bits, #exact),
             stream: #stream,
             order: #order,
+            group: #group,
         }
+    }
+}
+
+fn force_group(group: ForceGroup, rt: &TokenStream) -> TokenStream {
+    match group {
+        ForceGroup::Pair => quote!(#rt::ForceGroup::Pair),
+        ForceGroup::Bond => quote!(#rt::ForceGroup::Bond),
     }
 }
 
@@ -106,13 +121,16 @@ fn stage(stage: &Stage, rt: &TokenStream) -> TokenStream {
     let h = quote!(::core::primitive::f64::from_bits(#bits) * dt);
     let stream = Literal::u8_suffixed(stage.stream);
     let order = sweep_order(stage.order, rt);
-    match stage.flow {
-        Flow::A => quote!(#rt::drift(sys, #h);),
-        Flow::B => quote!(#rt::kick(sys, #h);),
-        Flow::O => quote!(#rt::ou(sys, #h, #stream, #order);),
-        Flow::Bbk => quote!(#rt::bbk(sys, #h, #stream, #order);),
-        Flow::T => quote!(#rt::trotter(sys, #h, #stream, #order);),
-        Flow::F => quote!(#rt::full_force(sys, #h, #stream);),
+    let group = stage.group.map(|g| force_group(g, rt));
+    match (stage.flow, group) {
+        (Flow::A, _) => quote!(#rt::drift(sys, #h);),
+        (Flow::B, None) => quote!(#rt::kick(sys, #h);),
+        (Flow::B, Some(g)) => quote!(#rt::kick_group(sys, #h, #g);),
+        (Flow::O, _) => quote!(#rt::ou(sys, #h, #stream, #order);),
+        (Flow::Bbk, _) => quote!(#rt::bbk(sys, #h, #stream, #order);),
+        (Flow::T, _) => quote!(#rt::trotter(sys, #h, #stream, #order);),
+        (Flow::F, None) => quote!(#rt::full_force(sys, #h, #stream);),
+        (Flow::F, Some(g)) => quote!(#rt::full_force_group(sys, #h, #stream, #g);),
     }
 }
 
@@ -136,6 +154,17 @@ mod tests {
             calls[2],
             "rt :: ou (sys , :: core :: primitive :: f64 :: from_bits (0x3ff0000000000000u64) \
              * dt , 0u8 , rt :: SweepOrder :: Forward) ;"
+        );
+        let grouped = dpd_ir::compile("B[pair] A B[bond] A B[pair] O").unwrap();
+        let calls: Vec<String> = grouped
+            .stages
+            .iter()
+            .map(|s| stage(s, &rt).to_string())
+            .collect();
+        assert_eq!(
+            calls[2],
+            format!("rt :: kick_group (sys , {h} , rt :: ForceGroup :: Bond) ;")
+                .replace("0x3fe0000000000000u64", "0x3ff0000000000000u64")
         );
     }
 }

@@ -1,6 +1,7 @@
 use crate::parallel::on_all_threads;
 use crate::system::System;
 use crate::Vec3;
+use dpd_ir::ForceGroup;
 use rayon::prelude::*;
 
 /// `p_i += h f_i` for every particle, on all threads for large systems (each element on its
@@ -19,13 +20,36 @@ fn add_scaled(p: &mut [Vec3], h: f64, f: &[Vec3]) {
     }
 }
 
-/// B: `p_i += h F^C_i(q)` (plus `h g` with a body force `g`). Exact for any `h`; reuses the conservative forces while positions
+/// B: `p_i += h F^C_i(q)`, every force: the pair forces with the body force, then the bonded
+/// forces ([`kick_group`] of each group). Exact for any `h`; reuses the forces while positions
 /// are unchanged.
 #[inline]
 pub fn kick(sys: &mut System, h: f64) {
-    let (p, force) = sys.momenta_and_conservative();
-    add_scaled(p, h, force);
-    sys.apply_body_force(h);
+    for group in ForceGroup::ALL {
+        kick_group(sys, h, group);
+    }
+}
+
+/// `B[pair]`, `B[bond]`: `p_i += h F^C_i(q)` with the forces of one group. Exact for any `h`;
+/// reuses the forces while positions are unchanged.
+///
+/// - [`ForceGroup::Pair`]: the conservative pair forces from their cache (evaluated from the
+///   pair table when stale), plus `h g` with a body force `g` (the body force is a pair-group
+///   force: see [`ForceGroup::Pair`]).
+/// - [`ForceGroup::Bond`]: the bonded forces. `dpd-core` models no bonds yet, so every system
+///   is without bonded forces and their kick adds nothing; [`System::advance`] refuses a
+///   scheme that names `B[bond]` on such a system before its first step
+///   ([`System::check_scheme`]), so no run takes this for a bonded kick.
+#[inline]
+pub fn kick_group(sys: &mut System, h: f64, group: ForceGroup) {
+    match group {
+        ForceGroup::Pair => {
+            let (p, force) = sys.momenta_and_conservative();
+            add_scaled(p, h, force);
+            sys.apply_body_force(h);
+        }
+        ForceGroup::Bond => {}
+    }
 }
 
 /// F: `p_i += h F_i` with the full force (conservative + dissipative + random).
@@ -39,8 +63,24 @@ pub fn kick(sys: &mut System, h: f64) {
 /// dissipative and random pair virial of the evaluation it uses.
 #[inline]
 pub fn full_force(sys: &mut System, h: f64, stream: u8) {
-    let (p, force) = sys.momenta_and_full(stream);
-    add_scaled(p, h, force);
-    sys.apply_body_force(h);
-    sys.record_full_kick(h);
+    for group in ForceGroup::ALL {
+        full_force_group(sys, h, stream, group);
+    }
+}
+
+/// `F[pair]`: [`full_force`] with the pair forces only (conservative, dissipative and random)
+/// and the body force. The bonded forces have no dissipative or random part, so their full
+/// kick is their conservative kick, [`kick_group`] of [`ForceGroup::Bond`] (the scheme
+/// language writes it `B[bond]` and refuses `F[bond]`).
+#[inline]
+pub fn full_force_group(sys: &mut System, h: f64, stream: u8, group: ForceGroup) {
+    match group {
+        ForceGroup::Pair => {
+            let (p, force) = sys.momenta_and_full(stream);
+            add_scaled(p, h, force);
+            sys.apply_body_force(h);
+            sys.record_full_kick(h);
+        }
+        ForceGroup::Bond => kick_group(sys, h, group),
+    }
 }

@@ -5,10 +5,12 @@
 //! |---|---|---|
 //! | A | [`drift`] | `q_i += h p_i / m_i` (exact) |
 //! | B | [`kick`] | `p_i += h F^C_i(q)` (exact) |
+//! | B[pair], B[bond] | [`kick_group`] | the same with the forces of one group (exact) |
 //! | O | [`ou`] | pairwise Ornstein-Uhlenbeck, exact in distribution per pair |
 //! | O-BBK | [`bbk`] | Shardlow's pair update, weakly second order |
 //! | T | [`trotter`] | pairwise conservative + OU, exact per pair |
 //! | F | [`full_force`] | `p_i += h F_i` with the full DPD force (explicit) |
+//! | F[pair] | [`full_force_group`] | the same with the pair forces only (explicit) |
 //!
 //! The pairwise sweeps (O, O-BBK, T) visit the interacting pairs successively in the sweep
 //! order documented in [`crate::neighbour`] for [`SweepOrder::Forward`], and in exactly the
@@ -36,7 +38,7 @@ mod pair_sweep;
 
 pub use drift::drift;
 pub use exponential::{exponential_velocity, EtdNoise};
-pub use kick::{full_force, kick};
+pub use kick::{full_force, full_force_group, kick, kick_group};
 pub use pair_sweep::{bbk, bbk_update, ou, ou_update, trotter, trotter_update, Change};
 
 pub use dpd_ir::SweepOrder;

@@ -10,6 +10,15 @@
 //! Storage is dense per word length: the word `l_1 l_2 ... l_n` over `m` letters has index
 //! `sum l_i m^(n-i)` (first letter most significant), so concatenation is
 //! `index(u v) = index(u) m^|v| + index(v)`.
+//!
+//! An algebra may also know that some letters commute: each letter may carry a commutation
+//! group, and two letters commute when both carry one and the groups differ (the kicks of
+//! different force groups, which both move momenta by functions of the positions). Products,
+//! exponentials and logarithms are computed in the free algebra; [`Algebra::project`] then
+//! maps a series onto the quotient by those relations, whose basis is the canonical words:
+//! each maximal run of letters with groups sorted by group, stably (letters of one group keep
+//! their order, as they do not commute). The projection is an algebra homomorphism, so
+//! projecting a product computed freely gives the product in the quotient.
 
 use std::fmt::Write;
 
@@ -20,6 +29,8 @@ use super::scalar::Scalar;
 pub struct Algebra {
     names: Vec<String>,
     weights: Vec<u32>,
+    /// The commutation group of each letter (see the module docs); all `None`: no relation.
+    groups: Vec<Option<u8>>,
     max_degree: u32,
     /// `word_weights[len][index]`: degree of each word of length `len`.
     word_weights: Vec<Vec<u32>>,
@@ -35,9 +46,10 @@ pub struct Series<S> {
 pub type Letter = usize;
 
 impl Algebra {
-    /// An algebra over `letters` (name, degree), truncated above `max_degree`. Degrees below 1
+    /// An algebra over `letters` (name, degree) whose letters commute as `groups` says (one
+    /// entry per letter, see the module docs), truncated above `max_degree`. Degrees below 1
     /// are raised to 1 so that every truncation is finite.
-    pub fn new(letters: &[(String, u32)], max_degree: u32) -> Algebra {
+    pub fn commuting(letters: &[(String, u32)], groups: &[Option<u8>], max_degree: u32) -> Algebra {
         let names = letters.iter().map(|(n, _)| n.clone()).collect();
         let weights: Vec<u32> = letters.iter().map(|&(_, w)| w.max(1)).collect();
         let m = weights.len();
@@ -53,9 +65,95 @@ impl Algebra {
         Algebra {
             names,
             weights,
+            groups: groups.to_vec(),
             max_degree,
             word_weights,
         }
+    }
+
+    /// Whether some letters commute.
+    fn has_relations(&self) -> bool {
+        let mut groups = self.groups.iter().flatten();
+        groups.next().is_some_and(|g| groups.any(|h| h != g))
+    }
+
+    /// The letters of `word`, first letter first.
+    fn letters_of(&self, word: Word) -> Vec<Letter> {
+        let m = self.letters();
+        let mut letters = vec![0; word.len];
+        let mut index = word.index;
+        for slot in letters.iter_mut().rev() {
+            *slot = index % m;
+            index /= m;
+        }
+        letters
+    }
+
+    /// The canonical word of `word`'s class: each maximal run of letters with a commutation
+    /// group sorted by group, stably.
+    pub fn canonical(&self, word: Word) -> Word {
+        if !self.has_relations() {
+            return word;
+        }
+        let mut letters = self.letters_of(word);
+        let mut start = 0;
+        while start < letters.len() {
+            let end = (start..letters.len())
+                .find(|&i| self.groups[letters[i]].is_none())
+                .unwrap_or(letters.len());
+            letters[start..end].sort_by_key(|&x| self.groups[x]);
+            start = end + 1;
+        }
+        let m = self.letters();
+        Word {
+            len: word.len,
+            index: letters.iter().fold(0, |i, &x| i * m + x),
+        }
+    }
+
+    /// How many words the class of `word` holds: for each run of letters with groups, the
+    /// number of interleavings of its groups' subsequences (a multinomial coefficient).
+    pub fn class_size(&self, word: Word) -> u64 {
+        let letters = self.letters_of(word);
+        let mut size = 1u64;
+        let mut run: Vec<u64> = Vec::new();
+        let mut length = 0u64;
+        for x in letters.iter().map(Some).chain([None]) {
+            match x.and_then(|&x| self.groups[x]) {
+                Some(g) => {
+                    let g = usize::from(g);
+                    if run.len() <= g {
+                        run.resize(g + 1, 0);
+                    }
+                    run[g] += 1;
+                    length += 1;
+                    // choose which of the run's places this group's letters take
+                    size = size * length / run[g];
+                }
+                None => {
+                    run.clear();
+                    length = 0;
+                }
+            }
+        }
+        size
+    }
+
+    /// `x` in the quotient by the commutation relations: every coefficient moved onto the
+    /// canonical word of its class.
+    pub fn project<S: Scalar>(&self, x: &Series<S>) -> Series<S> {
+        if !self.has_relations() {
+            return x.clone();
+        }
+        let mut out: Series<S> = self.zero();
+        for (len, row) in x.terms.iter().enumerate() {
+            for (index, c) in row.iter().enumerate() {
+                if !c.is_zero() {
+                    self.add_to(&mut out, self.canonical(Word { len, index }), c);
+                }
+            }
+        }
+        out
     }
 
     fn letters(&self) -> usize {
@@ -259,7 +357,11 @@ mod tests {
     use super::*;
 
     fn ab(max_degree: u32) -> Algebra {
-        Algebra::new(&[("A".into(), 1), ("B".into(), 1)], max_degree)
+        Algebra::commuting(
+            &[("A".into(), 1), ("B".into(), 1)],
+            &[None, None],
+            max_degree,
+        )
     }
 
     fn coeff(alg: &Algebra, x: &Series<Rational>, word: &str) -> String {
@@ -288,7 +390,7 @@ mod tests {
 
     #[test]
     fn heavy_letters_are_truncated() {
-        let alg = Algebra::new(&[("A".into(), 1), ("E".into(), 3)], 3);
+        let alg = Algebra::commuting(&[("A".into(), 1), ("E".into(), 3)], &[None, None], 3);
         let x = alg.linear(&[(0, 1.0), (1, 1.0)]);
         let e = alg.exp(&x);
         let nonzero: Vec<usize> = (0..=4)
@@ -306,5 +408,45 @@ mod tests {
             alg.split_last(e_word).map(|(p, l)| (alg.spell(p), l)),
             Some(("1".into(), 1))
         );
+    }
+
+    /// With P and Q commuting, `exp(P) exp(Q) = exp(P + Q)` in the quotient, though not in
+    /// the free algebra; `A` commutes with neither, so `APQ` and `PAQ` stay apart.
+    #[test]
+    fn commuting_letters_are_projected_onto_canonical_words() {
+        let letters = [("A".into(), 1), ("P".into(), 1), ("Q".into(), 1)];
+        let alg = Algebra::commuting(&letters, &[None, Some(0), Some(1)], 4);
+        let (p, q) = (
+            alg.linear(&[(1, Rational::ratio(1, 1))]),
+            alg.linear(&[(2, Rational::ratio(1, 1))]),
+        );
+        let product = alg.mul(&alg.exp(&p), &alg.exp(&q));
+        let sum = alg.exp(&alg.linear(&[(1, Rational::ratio(1, 1)), (2, Rational::ratio(1, 1))]));
+        assert_eq!(coeff(&alg, &product, "QP"), "0");
+        let (product, sum) = (alg.project(&product), alg.project(&sum));
+        for degree in 0..=4 {
+            let a: Vec<String> = alg
+                .terms_of_degree(&product, degree)
+                .map(|(_, c)| c.to_string())
+                .collect();
+            let b: Vec<String> = alg
+                .terms_of_degree(&sum, degree)
+                .map(|(_, c)| c.to_string())
+                .collect();
+            assert_eq!(a, b, "degree {degree}");
+        }
+        // PQ and QP are one class of two words, PQP Q of 4!/(2!2!) = 6 when run together
+        assert_eq!(coeff(&alg, &sum, "PQ"), "1");
+        let word = |w: &str| {
+            alg.terms_of_degree(&sum, w.len() as u32)
+                .find(|(x, _)| alg.spell(*x) == w)
+                .unwrap()
+                .0
+        };
+        assert_eq!(alg.spell(alg.canonical(word("QP"))), "PQ");
+        assert_eq!(alg.spell(alg.canonical(word("QAQP"))), "QAPQ");
+        assert_eq!(alg.class_size(word("PQPQ")), 6);
+        assert_eq!(alg.class_size(word("PAQP")), 2);
+        assert_eq!(alg.class_size(word("AAAA")), 1);
     }
 }

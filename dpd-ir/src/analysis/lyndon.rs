@@ -83,23 +83,29 @@ pub(crate) fn coordinates(
         .collect()
 }
 
-/// `AAB` as `[A,[A,B]]`: the standard bracketing written out.
-pub(crate) fn spell_bracket(w: &str) -> String {
+/// `AAB` as `[A,[A,B]]`: the standard bracketing written out, the letters `A`, `B`, `C`, ...
+/// written as `names` say (`names[0]` for `A`).
+pub(crate) fn spell_bracket(w: &str, names: &[String]) -> String {
     if w.len() == 1 {
-        return w.to_string();
+        let letter = w
+            .bytes()
+            .next()
+            .map_or(0, |c| usize::from(c.wrapping_sub(b'A')));
+        return names.get(letter).cloned().unwrap_or_else(|| w.to_string());
     }
     let split = (1..w.len())
         .find(|&i| is_lyndon(&w[i..]))
         .unwrap_or(w.len() - 1);
     format!(
         "[{},{}]",
-        spell_bracket(&w[..split]),
-        spell_bracket(&w[split..])
+        spell_bracket(&w[..split], names),
+        spell_bracket(&w[split..], names)
     )
 }
 
-/// `"-0.0416666667 [A,[A,B]] + 0.0833333333 [[A,B],B]"`, zero coordinates left out.
-pub(crate) fn spell_terms(terms: &[(String, f64)]) -> String {
+/// `"-0.0416666667 [A,[A,B]] + 0.0833333333 [[A,B],B]"`, zero coordinates left out, the
+/// letters written as `names` say (see [`spell_bracket`]).
+pub(crate) fn spell_terms(terms: &[(String, f64)], names: &[String]) -> String {
     let mut s = String::new();
     for (w, c) in terms.iter().filter(|(_, c)| *c != 0.0) {
         let sign = match (s.is_empty(), *c < 0.0) {
@@ -108,7 +114,11 @@ pub(crate) fn spell_terms(terms: &[(String, f64)]) -> String {
             (false, false) => " + ",
             (false, true) => " - ",
         };
-        s.push_str(&format!("{sign}{:.10} {}", c.abs(), spell_bracket(w)));
+        s.push_str(&format!(
+            "{sign}{:.10} {}",
+            c.abs(),
+            spell_bracket(w, names)
+        ));
     }
     if s.is_empty() {
         s.push('0');
@@ -128,8 +138,11 @@ mod tests {
             .map(|n| lyndon_words(&['A', 'B'], n).len())
             .collect();
         assert_eq!(dims, [2, 1, 2, 3, 6, 9]);
-        assert_eq!(spell_bracket("AAB"), "[A,[A,B]]");
-        assert_eq!(spell_bracket("ABB"), "[[A,B],B]");
+        let names = ["A".to_string(), "B".to_string()];
+        assert_eq!(spell_bracket("AAB", &names), "[A,[A,B]]");
+        assert_eq!(spell_bracket("ABB", &names), "[[A,B],B]");
+        let groups = ["A".to_string(), "B[pair]".into(), "B[bond]".into()];
+        assert_eq!(spell_bracket("ABC", &groups), "[A,[B[pair],B[bond]]]");
         assert_eq!(
             bracket("ABB"),
             HashMap::from([("ABB".into(), 1), ("BAB".into(), -2), ("BBA".into(), 1)])

@@ -118,6 +118,7 @@ pub fn order_residuals(stages: &[Stage], det: u32, inv: u32, pairs: usize) -> Op
     let coeffs: Vec<f64> = stages.iter().map(|s| s.coeff.value).collect();
     let (sums, _) = consistency::coefficient_sums(stages, &coeffs);
     let mut out = vec![sums.a - 1.0, sums.b - 1.0];
+    out.extend(sums.bond.map(|b| b - 1.0));
     if sums.thermostat {
         out.push(sums.o - 1.0);
     }
@@ -144,8 +145,9 @@ fn analyse_in<S: Scalar>(stages: &[Stage], coeffs: &[S], options: &Options) -> A
         options.pairs,
         options.max_invariant_order,
     );
-    let leading =
-        (consistent && !det.capped).then(|| hamiltonian::leading_error(&factors, det.order));
+    let leading = (consistent && !det.capped)
+        .then(|| hamiltonian::leading_error(&factors, det.order))
+        .flatten();
     Analysis {
         consistent,
         coefficient_sums,
@@ -157,6 +159,6 @@ fn analyse_in<S: Scalar>(stages: &[Stage], coeffs: &[S], options: &Options) -> A
         invariant_measure_error_norm: inv.as_ref().and_then(|b| b.leading_norm),
         first_nonvanishing: inv.and_then(|b| b.leading_term),
         deterministic_error_norm: leading.as_ref().map(|e| e.norm),
-        deterministic_leading_term: leading.map(|e| lyndon::spell_terms(&e.terms)),
+        deterministic_leading_term: leading.map(|e| lyndon::spell_terms(&e.terms, &factors.names)),
     }
 }

@@ -33,6 +33,7 @@ pub fn prk_stages(b: &[Coeff], bh: &[Coeff]) -> Vec<Stage> {
         coeff: coeff.clone(),
         stream,
         order: SweepOrder::Forward,
+        group: None,
     };
     (0..b.len().max(bh.len()))
         .flat_map(|i| {

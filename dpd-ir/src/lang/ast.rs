@@ -39,11 +39,13 @@ impl Expr {
     }
 }
 
-/// An application of a letter or a sub-scheme: `O<(1/2)`, `S(x1)`, `BAB`.
+/// An application of a letter or a sub-scheme: `O<(1/2)`, `S(x1)`, `BAB`, `B[bond](1/8)`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Apply {
     pub name: String,
     pub name_span: Span,
+    /// The force group in brackets after the name (`B[pair]`), with its span.
+    pub group: Option<(String, Span)>,
     /// Explicit sweep order (`<` or `>` after the name).
     pub order: Option<SweepOrder>,
     /// `None` when written without parentheses.
@@ -61,11 +63,31 @@ pub struct Prk {
     pub span: Span,
 }
 
+/// A repetition `( steps )^count`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Repeat {
+    pub body: Vec<Step>,
+    /// How many times the body runs: an expression that must be a positive integer.
+    pub count: Expr,
+    pub span: Span,
+}
+
 /// One element of a step sequence.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Step {
     Apply(Apply),
     Prk(Prk),
+    Repeat(Repeat),
+}
+
+impl Step {
+    pub fn span(&self) -> Span {
+        match self {
+            Step::Apply(a) => a.span.clone(),
+            Step::Prk(p) => p.span.clone(),
+            Step::Repeat(r) => r.span.clone(),
+        }
+    }
 }
 
 /// `let name = value;`

@@ -1,12 +1,14 @@
 //! Name resolution and expansion of a parsed scheme into the flat sequence of applications,
 //! including the default (implicit) step lengths.
 
-use super::ast::{Apply, Def, Prk, Script, Span, Step};
+use super::ast::{Apply, Def, Prk, Repeat, Script, Span, Step};
 use super::diagnostic::{position, Diagnostic};
 use super::expr::{eval, Scope, FUNCTIONS};
-use super::letters::{letter, spellings};
+use super::letters::{group, group_spelling, group_spellings, letter, spellings, Letter};
 use super::value::Value;
+use crate::forces::ForceGroup;
 use crate::program::{Flow, SweepOrder};
+use num_traits::ToPrimitive;
 use std::collections::{BTreeMap, HashMap};
 
 /// Deepest chain of sub-scheme calls.
@@ -21,6 +23,8 @@ pub(crate) const RESERVED: [&str; 4] = ["let", "def", "prk", "param"];
 #[derive(Clone, Debug, PartialEq)]
 pub struct Application {
     pub flow: Flow,
+    /// The force group the letter names (`B[bond]`), if any.
+    pub group: Option<ForceGroup>,
     pub coeff: Value,
     /// Sweep order written in the scheme (`O<`, `O>`), if any.
     pub order: Option<SweepOrder>,
@@ -52,19 +56,12 @@ pub fn expand(
     x.consts.extend(bindings.iter().cloned());
     x.define(script, false);
     for step in &script.steps {
-        x.step(step, &[], step_span(step), false);
+        x.step(step, &[], step.span(), false);
     }
     if !x.errors.is_empty() {
         return Err(x.errors);
     }
     fill_implicit(x.out).map_err(|e| vec![e])
-}
-
-fn step_span(step: &Step) -> Span {
-    match step {
-        Step::Apply(a) => a.span.clone(),
-        Step::Prk(p) => p.span.clone(),
-    }
 }
 
 /// An application whose coefficient is still a placeholder unless `explicit`.
@@ -151,6 +148,7 @@ impl<'a> Expander<'a> {
         let result = match step {
             Step::Apply(a) => self.apply(a, params, &site, builtin),
             Step::Prk(p) => self.prk(p, params, &site),
+            Step::Repeat(r) => self.repeat(r, params, &site, builtin),
         };
         if let Err(mut e) = result {
             if builtin {
@@ -210,6 +208,7 @@ impl<'a> Expander<'a> {
             let explicit = coeff.is_some();
             let app = Application {
                 flow: l.flow,
+                group: force_group(self.src, l, a)?,
                 coeff: coeff.unwrap_or(Value::int(0)),
                 order: a.order,
                 noise: None,
@@ -237,6 +236,15 @@ impl<'a> Expander<'a> {
                     a.name
                 ),
                 a.span.clone(),
+            ));
+        }
+        if let Some((_, span)) = &a.group {
+            return Err(Diagnostic::new(
+                format!(
+                    "force groups select the forces of the kick letters B and F, not of the sub-scheme {}; write the group on its letters",
+                    a.name
+                ),
+                span.clone(),
             ));
         }
         let args = args.unwrap_or_default();
@@ -299,6 +307,38 @@ impl<'a> Expander<'a> {
             .transpose()
     }
 
+    /// Expands the body of `r` as many times as its count says. At the top level of the
+    /// scheme each repeated step is its own site; inside a sub-scheme the call stays the site.
+    fn repeat(
+        &mut self,
+        r: &Repeat,
+        params: &[(String, Value)],
+        site: &Span,
+        builtin: bool,
+    ) -> Result<(), Diagnostic> {
+        let scope = Scope {
+            params,
+            consts: &self.consts,
+        };
+        let count = repeat_count(&eval(&r.count, &scope)?, r.count.span())?;
+        let errors = self.errors.len();
+        for _ in 0..count {
+            for step in &r.body {
+                let at = if self.stack.is_empty() && !builtin {
+                    step.span()
+                } else {
+                    site.clone()
+                };
+                self.step(step, params, at, builtin);
+            }
+            // One pass reports every error of the body; the expansion limit stops the rest.
+            if self.errors.len() > errors || self.out.len() > MAX_APPLICATIONS {
+                break;
+            }
+        }
+        Ok(())
+    }
+
     fn prk(&mut self, p: &Prk, params: &[(String, Value)], site: &Span) -> Result<(), Diagnostic> {
         let scope = Scope {
             params,
@@ -320,6 +360,7 @@ impl<'a> Expander<'a> {
             for (flow, coeff, noise) in [(p.kick, kick, noise), (Flow::A, drift, None)] {
                 let app = Application {
                     flow,
+                    group: None,
                     coeff,
                     order: None,
                     noise,
@@ -332,12 +373,71 @@ impl<'a> Expander<'a> {
     }
 }
 
-/// Gives every implicit application of a flow an equal share of what the explicit
-/// applications of that flow leave of 1.
+/// The force group `a` names for the letter `l`, checked against the groups it takes.
+fn force_group(src: &str, l: &Letter, a: &Apply) -> Result<Option<ForceGroup>, Diagnostic> {
+    let Some((name, span)) = &a.group else {
+        return Ok(None);
+    };
+    let at = |m: String| Err(Diagnostic::new(m, span.clone()));
+    let Some(g) = group(name) else {
+        return at(format!(
+            "unknown force group '{name}' at position {}; expected one of {}",
+            position(src, span.start),
+            group_spellings()
+        ));
+    };
+    if l.groups.contains(&g.group) {
+        return Ok(Some(g.group));
+    }
+    let takes: Vec<&str> = l.groups.iter().map(|&g| group_spelling(g)).collect();
+    at(match (takes.is_empty(), g.group) {
+        (true, _) => format!(
+            "{} takes no force group: groups select the forces of the kick letters B and F",
+            l.spelling
+        ),
+        (false, ForceGroup::Bond) => format!(
+            "{}[bond] is not a sub-flow: the bonded forces have no dissipative or random part, so their kick is B[bond]",
+            l.spelling
+        ),
+        (false, _) => format!(
+            "{} takes the force group {}, not {name}",
+            l.spelling,
+            takes.join(", ")
+        ),
+    })
+}
+
+/// The number of times a repetition runs: a positive integer, at most
+/// [`MAX_APPLICATIONS`] (each pass adds at least one application).
+fn repeat_count(count: &Value, span: Span) -> Result<usize, Diagnostic> {
+    let n = match count {
+        Value::Exact(r) if r.is_integer() => r.to_integer().to_usize(),
+        _ => None,
+    };
+    n.filter(|n| (1..=MAX_APPLICATIONS).contains(n)).ok_or_else(|| {
+        Diagnostic::new(
+            format!(
+                "a repetition count must be a whole number from 1 to {MAX_APPLICATIONS}, found {count}"
+            ),
+            span,
+        )
+    })
+}
+
+/// Gives every implicit application of a letter (with its force group) an equal share of
+/// what the explicit applications of the same letter and group leave of 1.
 fn fill_implicit(pending: Vec<Pending>) -> Result<Vec<Application>, Diagnostic> {
     let mut shares = HashMap::new();
-    for flow in Flow::ALL {
-        let of_flow = || pending.iter().filter(|p| p.app.flow == flow);
+    let groups = std::iter::once(None).chain(ForceGroup::ALL.map(Some));
+    for (flow, group) in Flow::ALL
+        .into_iter()
+        .flat_map(|f| groups.clone().map(move |g| (f, g)))
+    {
+        let of_flow = || {
+            pending
+                .iter()
+                .filter(|p| p.app.flow == flow && p.app.group == group)
+        };
         let Some(first) = of_flow().find(|p| !p.explicit) else {
             continue;
         };
@@ -348,13 +448,13 @@ fn fill_implicit(pending: Vec<Pending>) -> Result<Vec<Application>, Diagnostic> 
         }
         let implicit = of_flow().filter(|p| !p.explicit).count();
         let count = Value::int(i64::try_from(implicit).unwrap_or(i64::MAX));
-        shares.insert(flow, rest.div(&count).map_err(at)?);
+        shares.insert((flow, group), rest.div(&count).map_err(at)?);
     }
     Ok(pending
         .into_iter()
         .map(|p| {
             let mut app = p.app;
-            if let (false, Some(share)) = (p.explicit, shares.get(&app.flow)) {
+            if let (false, Some(share)) = (p.explicit, shares.get(&(app.flow, app.group))) {
                 app.coeff = share.clone();
             }
             app

@@ -201,18 +201,24 @@ pub(crate) fn refuse_free_parameters(script: &Script) -> Vec<Diagnostic> {
         .collect()
 }
 
-/// Every name used in an expression of `script` (constants, steps, sub-scheme bodies).
+/// Every name used in an expression of `script` (constants, steps, sub-scheme bodies,
+/// repetition counts).
 fn used_names(script: &Script) -> BTreeSet<&str> {
     let mut names = BTreeSet::new();
     let mut exprs: Vec<&Expr> = script.lets.iter().map(|l| &l.value).collect();
-    let steps = script
+    let mut steps: Vec<&Step> = script
         .steps
         .iter()
-        .chain(script.defs.iter().flat_map(|d| &d.body));
-    for step in steps {
+        .chain(script.defs.iter().flat_map(|d| &d.body))
+        .collect();
+    while let Some(step) = steps.pop() {
         match step {
             Step::Apply(a) => exprs.extend(a.args.iter().flatten()),
             Step::Prk(p) => exprs.extend(p.b.iter().chain(&p.bh)),
+            Step::Repeat(r) => {
+                exprs.push(&r.count);
+                steps.extend(&r.body);
+            }
         }
     }
     while let Some(e) = exprs.pop() {

@@ -1,5 +1,7 @@
-//! The one table of sub-flow letters, shared by the parser, the messages and the docs.
+//! The tables of sub-flow letters and force groups, shared by the parser, the messages and the
+//! docs.
 
+use crate::forces::ForceGroup;
 use crate::program::Flow;
 
 /// A letter of the scheme language and the sub-flow it applies.
@@ -10,7 +12,34 @@ pub struct Letter {
     pub flow: Flow,
     /// One-line description, as in algorithms.md section 2.
     pub meaning: &'static str,
+    /// The force groups the letter may name in brackets (`B[bond]`).
+    pub groups: &'static [ForceGroup],
 }
+
+/// A force group, as written in brackets after a kick letter.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Group {
+    pub spelling: &'static str,
+    pub group: ForceGroup,
+    /// One-line description of the forces it holds.
+    pub meaning: &'static str,
+}
+
+/// Every force group (module [`crate::forces`]).
+pub const GROUPS: [Group; 2] = [
+    Group {
+        spelling: "pair",
+        group: ForceGroup::Pair,
+        meaning:
+            "the pair forces (in F also their dissipative and random parts) and the body force",
+    },
+    Group {
+        spelling: "bond",
+        group: ForceGroup::Bond,
+        meaning:
+            "the bonded forces: bonds and angles (B only: they have no dissipative or random part)",
+    },
+];
 
 /// Every sub-flow letter. Spellings start with an uppercase letter followed by lowercase
 /// letters only, so that `ObBAB` reads as `Ob B A B`.
@@ -19,31 +48,37 @@ pub const LETTERS: [Letter; 6] = [
         spelling: "A",
         flow: Flow::A,
         meaning: "drift q += h p / m",
+        groups: &[],
     },
     Letter {
         spelling: "B",
         flow: Flow::B,
-        meaning: "conservative kick p += h F^C(q)",
+        meaning: "conservative kick p += h F^C(q), all forces or one group: B[pair], B[bond]",
+        groups: &[ForceGroup::Pair, ForceGroup::Bond],
     },
     Letter {
         spelling: "O",
         flow: Flow::O,
         meaning: "pairwise Ornstein-Uhlenbeck sweep, exact per pair",
+        groups: &[],
     },
     Letter {
         spelling: "Ob",
         flow: Flow::Bbk,
         meaning: "pairwise Ornstein-Uhlenbeck sweep with Shardlow's BBK update",
+        groups: &[],
     },
     Letter {
         spelling: "T",
         flow: Flow::T,
         meaning: "pairwise conservative + Ornstein-Uhlenbeck sweep, exact per pair",
+        groups: &[],
     },
     Letter {
         spelling: "F",
         flow: Flow::F,
-        meaning: "explicit full-force kick p += h (F^C + F^D + F^R)",
+        meaning: "explicit full-force kick p += h (F^C + F^D + F^R), all forces or F[pair]",
+        groups: &[ForceGroup::Pair],
     },
 ];
 
@@ -60,6 +95,28 @@ pub fn spelling(flow: Flow) -> &'static str {
         .map_or("?", |l| l.spelling)
 }
 
+/// The force group spelled `spelling`, if any.
+pub fn group(spelling: &str) -> Option<&'static Group> {
+    GROUPS.iter().find(|g| g.spelling == spelling)
+}
+
+/// The spelling of `group`.
+pub fn group_spelling(group: ForceGroup) -> &'static str {
+    GROUPS
+        .iter()
+        .find(|g| g.group == group)
+        .map_or("?", |g| g.spelling)
+}
+
+/// "pair, bond": the force groups, for messages.
+pub fn group_spellings() -> String {
+    GROUPS
+        .iter()
+        .map(|g| g.spelling)
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 /// "A, B, O, Ob, T, F": the letters, for messages.
 pub fn spellings() -> String {
     LETTERS
@@ -74,11 +131,35 @@ mod tests {
     use super::*;
 
     #[test]
-    fn module_docs_list_every_letter() {
+    fn module_docs_list_every_letter_and_group() {
         let docs = include_str!("mod.rs");
         for l in LETTERS {
             let row = format!("//! | `{}` | {} |", l.spelling, l.meaning);
             assert!(docs.contains(&row), "missing docs row {row}");
+        }
+        for g in GROUPS {
+            let row = format!("//! | `{}` | {} |", g.spelling, g.meaning);
+            assert!(docs.contains(&row), "missing docs row {row}");
+        }
+    }
+
+    /// README's table of letters has a row for every letter and for every letter with each
+    /// group it takes (`B[bond]`), and the macro's documentation names every grouped letter.
+    #[test]
+    fn user_docs_list_every_letter_and_grouped_letter() {
+        let readme = include_str!("../../../README.md");
+        let macro_docs = include_str!("../../../src/dpd_scheme.md");
+        for l in LETTERS {
+            let row = format!("| `{}` |", l.spelling);
+            assert!(readme.contains(&row), "README lacks the row {row}");
+            for g in l.groups {
+                let grouped = format!("`{}[{}]", l.spelling, group_spelling(*g));
+                assert!(readme.contains(&grouped), "README lacks {grouped}");
+                assert!(
+                    macro_docs.contains(&grouped),
+                    "dpd_scheme.md lacks {grouped}"
+                );
+            }
         }
     }
 
@@ -89,5 +170,10 @@ mod tests {
             assert_eq!(spelling(l.flow), l.spelling);
         }
         assert_eq!(spellings(), "A, B, O, Ob, T, F");
+        for g in GROUPS {
+            assert_eq!(group(g.spelling), Some(&g));
+            assert_eq!(group_spelling(g.group), g.spelling);
+        }
+        assert_eq!(group_spellings(), "pair, bond");
     }
 }

@@ -42,14 +42,15 @@ fn merges(flow: Flow) -> bool {
     !flow.is_successive_sweep()
 }
 
-/// Merges adjacent applications of the same merging flow and drops those left with a zero
+/// Merges adjacent applications of the same merging flow and force group (`B B[pair]` are two
+/// kicks of different forces) and drops those left with a zero
 /// coefficient (which may make their neighbours adjacent). A merged F keeps the noise of its
 /// first part, as the force evaluation (noise included) is reused.
 fn merge(apps: Vec<Application>) -> Result<Vec<Application>, Vec<Diagnostic>> {
     let mut merged: Vec<Application> = Vec::with_capacity(apps.len());
     for a in apps {
         match merged.last_mut() {
-            Some(top) if top.flow == a.flow && merges(a.flow) => {
+            Some(top) if top.flow == a.flow && top.group == a.group && merges(a.flow) => {
                 top.coeff = top
                     .coeff
                     .add(&a.coeff)
@@ -100,6 +101,7 @@ fn stages(apps: &[Application]) -> Result<Vec<Stage>, Vec<Diagnostic>> {
                 coeff,
                 stream,
                 order: a.order.unwrap_or_default(),
+                group: a.group,
             }),
             Err(m) => errors.push(Diagnostic::new(m, a.span.clone())),
         }

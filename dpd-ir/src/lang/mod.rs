@@ -13,15 +13,49 @@
 //! | letter | sub-flow |
 //! |---|---|
 //! | `A` | drift q += h p / m |
-//! | `B` | conservative kick p += h F^C(q) |
+//! | `B` | conservative kick p += h F^C(q), all forces or one group: B[pair], B[bond] |
 //! | `O` | pairwise Ornstein-Uhlenbeck sweep, exact per pair |
 //! | `Ob` | pairwise Ornstein-Uhlenbeck sweep with Shardlow's BBK update |
 //! | `T` | pairwise conservative + Ornstein-Uhlenbeck sweep, exact per pair |
-//! | `F` | explicit full-force kick p += h (F^C + F^D + F^R) |
+//! | `F` | explicit full-force kick p += h (F^C + F^D + F^R), all forces or F[pair] |
 //!
 //! Names of sub-flows and sub-schemes start with an uppercase letter and continue with
 //! lowercase letters, digits or `_`, so an uppercase letter always starts a new name:
 //! `ObBAB` is `Ob B A B`, `ABOBA` is five letters.
+//!
+//! # Force groups
+//!
+//! `B` and `F` apply all forces. A force group in brackets right after the letter selects
+//! part of them (module [`crate::forces`]):
+//!
+//! | group | forces |
+//! |---|---|
+//! | `pair` | the pair forces (in F also their dissipative and random parts) and the body force |
+//! | `bond` | the bonded forces: bonds and angles (B only: they have no dissipative or random part) |
+//!
+//! so `B[pair](1/2)` kicks with the pair forces for half a step, `B[bond](1/8)` with the bonded
+//! forces for an eighth, `F[pair]` is the full-force kick of the pair forces; `T` applies the
+//! pair forces (with its Ornstein-Uhlenbeck part) and takes no group. A scheme that names a
+//! group runs only on a system that has it (`B[bond]` needs bonds: the run-time check refuses
+//! it before the first step otherwise), and a system with bonded forces needs a scheme that
+//! applies them (`B`, `F` or `B[bond]`). Brackets after a letter are always a group: the
+//! letter spellings never contain them, and `[` elsewhere only opens a `prk` list.
+//!
+//! # Repetition
+//!
+//! `( steps )^n` runs the steps in parentheses `n` times, `n` a whole number from 1 to 10 000
+//! (a number, a constant, a parameter of the enclosing sub-scheme or an expression in
+//! parentheses): multiple time stepping writes the inner loop once,
+//!
+//! ```text
+//! B[pair](1/2) (B[bond](1/8) A(1/4) B[bond](1/8))^4 O B[pair](1/2)
+//! def Inner(c, n) = (B[bond](c/(2n)) A(c/n) B[bond](c/(2n)))^n;
+//! ```
+//!
+//! Repetitions nest and may appear in sub-scheme bodies. A parenthesis after a letter holds
+//! its coefficient unless a step starts inside it (an uppercase name or `prk`, after any
+//! further `(`), which no coefficient does: `A (B A B)^2` is `A` and a repetition,
+//! `A((1/2))` is `A` with one coefficient.
 //!
 //! # Step lengths
 //!
@@ -29,7 +63,9 @@
 //! without one share what the explicit occurrences of the same letter leave of `dt`,
 //! equally: `ABOBA` = `A(1/2) B(1/2) O(1) B(1/2) A(1/2)`, and in `A(1/4) B A A` each of the
 //! two bare `A` runs `3/8 dt`. The sharing is counted over the whole expanded step, sub-schemes
-//! included, separately per letter (`O` and `Ob` are different letters).
+//! and repetitions included, separately per letter and force group (`O` and `Ob` are different
+//! letters, `B` and `B[bond]` share apart): `B[pair] (B[bond] A B[bond])^4 O B[pair]` is the
+//! multiple-time-stepping example above.
 //!
 //! Coefficients are expressions: numbers (`3`, `0.25`, `1e-3`), `+ - * /`, unary minus, `^`
 //! (right associative, binds tighter than unary minus: `-2^2 = -4`, `2^-1 = 1/2`),
@@ -114,8 +150,10 @@
 //!         | "param" name "in" expr ".." expr ";"
 //!         | "def" Name [ "(" name { "," name } ")" ] "=" step { step } ";"
 //!         | step ;
-//! step    = Name [ "<" | ">" ] [ "(" expr { "," expr } ")" ]
-//!         | "prk" "(" prkarg { "," prkarg } ")" ;
+//! step    = Name [ "[" group "]" ] [ "<" | ">" ] [ "(" expr { "," expr } ")" ]
+//!         | "prk" "(" prkarg { "," prkarg } ")"
+//!         | "(" step { step } ")" "^" atom ;
+//! group   = "pair" | "bond" ;
 //! prkarg  = "b" "=" list | "bh" "=" list | "kick" "=" ( "F" | "B" ) ;
 //! list    = "[" expr { "," expr } "]" ;
 //! expr    = product { ( "+" | "-" ) product } ;
@@ -134,19 +172,25 @@
 //! reported together. Besides syntax and name errors (unknown letter or name, unbalanced
 //! brackets, wrong number of arguments, recursion, undefined constants):
 //!
-//! - the scheme must not be empty, must contain an `A`, and a `B`, `T` or `F`;
+//! - the scheme must not be empty, must contain an `A`, and a `B`, `T` or `F` applying the
+//!   pair forces;
+//! - a force group only after `B` or `F` (`F[bond]` is `B[bond]`), a known group, a
+//!   repetition count a whole number from 1 to 10 000;
 //! - coefficients must be finite (division by zero, overflow);
 //! - `O`, `Ob` and `T` need a positive coefficient: a stochastic sweep cannot run backwards;
 //! - consistency: the coefficients of each generator sum to 1 — A: `A`; B: `B`, `T`, `F`;
-//!   O: `O`, `Ob`, `T`, `F` (not checked for a scheme without any stochastic flow). Exact sums
-//!   must equal 1 exactly, others within 1e-12. [`Options::allow_inconsistent`] turns this
-//!   check off (M-Shardlow-1 as published);
+//!   O: `O`, `Ob`, `T`, `F` (not checked for a scheme without any stochastic flow). A scheme
+//!   that names force groups has a generator per group instead of B — B[pair]: `B`,
+//!   `B[pair]`, `T`, `F`, `F[pair]`; B[bond], where some stage applies bonded forces: `B`,
+//!   `B[bond]`, `F`. Exact sums must equal 1 exactly, others within 1e-12.
+//!   [`Options::allow_inconsistent`] turns this check off (M-Shardlow-1 as published);
 //! - at most 255 random streams per step.
 //!
 //! # Lowering
 //!
-//! Adjacent applications of `A`, `B` or `F` merge into one (drifts commute; a kick reuses its
-//! force while positions do not change) and those with a zero coefficient are dropped;
+//! Adjacent applications of `A`, `B` or `F` (of the same force group) merge into one (drifts
+//! commute; a kick reuses its force while positions do not change) and those with a zero
+//! coefficient are dropped;
 //! sweeps never merge. Each stochastic stage gets the next random stream (0, 1, 2, ...), the
 //! F stages of one `kick = F` table sharing one. See [`Program`].
 //!
@@ -213,12 +257,25 @@ fn build(
     bindings: &[(String, value::Value)],
     options: &Options,
 ) -> Result<Program, Vec<Diagnostic>> {
-    let apps = expand::expand(src, script, prelude, bindings)?;
+    let apps = expand::expand(src, script, prelude, bindings).map_err(distinct)?;
     let errors = validate::validate(&apps, src.len(), options);
     if !errors.is_empty() {
-        return Err(errors);
+        return Err(distinct(errors));
     }
     lower::lower(src, apps)
+}
+
+/// `errors` with repeats left out: a repeated step (`(O(-1) A)^4`) reports its error once.
+fn distinct(mut errors: Vec<Diagnostic>) -> Vec<Diagnostic> {
+    let mut seen = Vec::with_capacity(errors.len());
+    errors.retain(|e| {
+        let new = !seen.contains(e);
+        if new {
+            seen.push(e.clone());
+        }
+        new
+    });
+    errors
 }
 
 fn parse_source(src: &str) -> Result<ast::Script, Vec<Diagnostic>> {

@@ -1,6 +1,6 @@
 //! Recursive-descent parser from tokens to a [`Script`], with bounded nesting.
 
-use super::ast::{Apply, BinOp, Def, Expr, Let, Param, Prk, Script, Span, Step};
+use super::ast::{Apply, BinOp, Def, Expr, Let, Param, Prk, Repeat, Script, Span, Step};
 use super::diagnostic::{position, Diagnostic};
 use super::lexer::{Tok, Token};
 use crate::program::{Flow, SweepOrder};
@@ -279,6 +279,13 @@ impl Parser<'_> {
             Some(Tok::Upper(name)) => {
                 let name_span = self.here();
                 self.pos += 1;
+                let group = if self.eat('[') {
+                    let group = self.lower("a force group name, as in B[pair] or B[bond]")?;
+                    self.expect(']', "']' after the force group")?;
+                    Some(group)
+                } else {
+                    None
+                };
                 let order = if self.eat('<') {
                     Some(SweepOrder::Reverse)
                 } else if self.eat('>') {
@@ -286,7 +293,7 @@ impl Parser<'_> {
                 } else {
                     None
                 };
-                let args = if self.eat('(') {
+                let args = if !self.opens_steps() && self.eat('(') {
                     Some(self.list(')')?)
                 } else {
                     None
@@ -294,6 +301,7 @@ impl Parser<'_> {
                 Ok(Step::Apply(Apply {
                     name,
                     name_span,
+                    group,
                     order,
                     args,
                     span: start..self.prev_end(),
@@ -303,6 +311,15 @@ impl Parser<'_> {
                 self.pos += 1;
                 self.prk(start)
             }
+            Some(Tok::Punct('(')) => self.nested(|p| p.repeat(start)),
+            Some(Tok::Lower(name)) if ["let", "def", "param"].contains(&name.as_str()) => {
+                Err(Diagnostic::new(
+                    format!(
+                        "'{name}' starts a definition, which cannot stand inside a sub-scheme's body or a repetition"
+                    ),
+                    self.here(),
+                ))
+            }
             Some(Tok::Lower(name)) => Err(Diagnostic::new(
                 format!(
                     "unknown sub-flow '{name}' at position {}; names of sub-flows and sub-schemes start with an uppercase letter (constants like '{name}' go inside parentheses, as in A({name}))",
@@ -310,8 +327,46 @@ impl Parser<'_> {
                 ),
                 self.here(),
             )),
-            _ => Err(self.expected("a sub-flow letter, a sub-scheme, 'prk', 'let' or 'def'")),
+            _ => Err(self.expected(
+                "a sub-flow letter, a sub-scheme, a repetition '(...)^n', 'prk', 'let' or 'def'",
+            )),
         }
+    }
+
+    /// Whether the next token opens a parenthesis of steps (a repetition) rather than of
+    /// coefficients: after any further `(`, a step starts with an uppercase name or `prk`,
+    /// which no coefficient expression does. So `A (B A B)^2` is `A` followed by a
+    /// repetition, while `A((1/2))` is `A` with one coefficient.
+    fn opens_steps(&self) -> bool {
+        let mut k = self.pos;
+        while matches!(self.tokens.get(k), Some(t) if t.tok == Tok::Punct('(')) {
+            k += 1;
+        }
+        k > self.pos && self.tokens.get(k).is_some_and(|t| is_step_start(&t.tok))
+    }
+
+    /// `( steps )^count`, the `(` next.
+    fn repeat(&mut self, start: usize) -> PResult<Step> {
+        self.expect('(', "'('")?;
+        let mut body = Vec::new();
+        while !self.eat(')') {
+            body.push(self.step()?);
+        }
+        if body.is_empty() {
+            return Err(Diagnostic::new(
+                "empty repetition: write the steps to repeat inside the parentheses, as in (B A B)^4",
+                start..self.prev_end(),
+            ));
+        }
+        if !self.eat('^') {
+            return Err(self.expected("'^' and a count after the repeated steps, as in (B A B)^4"));
+        }
+        let count = self.atom()?;
+        Ok(Step::Repeat(Repeat {
+            body,
+            count,
+            span: start..self.prev_end(),
+        }))
     }
 
     /// Comma-separated expressions up to `close` (the opening bracket is already consumed).
@@ -515,6 +570,15 @@ impl Parser<'_> {
             }),
             _ => Err(self.expected("a number, a constant or '('")),
         }
+    }
+}
+
+/// Whether `tok` starts a step inside parentheses: a sub-flow or sub-scheme name, or `prk`.
+fn is_step_start(tok: &Tok) -> bool {
+    match tok {
+        Tok::Upper(_) => true,
+        Tok::Lower(name) => name == "prk",
+        _ => false,
     }
 }
 

@@ -6,6 +6,7 @@ use super::expand::Application;
 use super::letters::spelling;
 use super::value::Value;
 use super::Options;
+use crate::forces::{kicks, ForceGroup, Kick};
 use crate::program::Flow;
 use num_traits::One;
 
@@ -67,44 +68,59 @@ fn has_drift(apps: &[Application], whole: &Span) -> Option<Diagnostic> {
     })
 }
 
-/// Without B, T or F the conservative force is never applied.
+/// Without B, T or F (or their pair-group forms) the conservative pair force is never
+/// applied.
 fn has_conservative_force(apps: &[Application], whole: &Span) -> Option<Diagnostic> {
-    (!apps.iter().any(|a| carries(Generator::B, a.flow))).then(|| {
+    let pair = Kick::Group(ForceGroup::Pair);
+    (!apps.iter().any(|a| pair.advanced_by(a.flow, a.group))).then(|| {
         Diagnostic::new(
-            "scheme has no conservative force: it needs a B, T or F",
+            "scheme has no conservative force: it needs a B, T or F (B[bond] alone applies the bonded forces only)",
             whole.clone(),
         )
     })
 }
 
-/// The generators of the DPD dynamics (algorithms.md section 4).
+/// A generator of the DPD dynamics (algorithms.md section 4): the drift, a kick (all forces,
+/// or one force group in a scheme that names groups) and the thermostat.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Generator {
     A,
-    B,
+    Kick(Kick),
     O,
 }
 
-/// Whether `flow` advances generator `g` (T and F carry both B and O).
-fn carries(g: Generator, flow: Flow) -> bool {
-    match g {
-        Generator::A => flow == Flow::A,
-        Generator::B => matches!(flow, Flow::B | Flow::T | Flow::F),
-        Generator::O => flow.is_stochastic(),
+impl Generator {
+    /// Whether application `a` advances the generator (T and F carry a kick and O).
+    fn advanced_by(self, a: &Application) -> bool {
+        match self {
+            Generator::A => a.flow == Flow::A,
+            Generator::Kick(k) => k.advanced_by(a.flow, a.group),
+            Generator::O => a.flow.is_stochastic(),
+        }
+    }
+
+    /// The generator and its carriers, for messages: `B[bond] (B, B[bond] and F stages)`.
+    fn describe(self) -> String {
+        match self {
+            Generator::A => "A coefficients (A stages)".to_string(),
+            Generator::Kick(k) => format!("{k} coefficients ({} stages)", k.carriers()),
+            Generator::O => "O coefficients (O, Ob, T and F stages)".to_string(),
+        }
     }
 }
 
 /// First-order consistency: the step lengths of each generator add up to one step. A scheme
 /// without any stochastic flow is a deterministic (Hamiltonian) scheme; its O sum is not
-/// checked.
+/// checked. In a scheme that names force groups each group it applies is a generator of its
+/// own: a kick of the bonded forces cannot stand in for a kick of the pair forces.
 fn consistent(apps: &[Application]) -> Vec<Diagnostic> {
     let mut errors = Vec::new();
-    for (g, carriers) in [
-        (Generator::A, "A"),
-        (Generator::B, "B, T and F"),
-        (Generator::O, "O, Ob, T and F"),
-    ] {
-        let of_g: Vec<&Application> = apps.iter().filter(|a| carries(g, a.flow)).collect();
+    let kicks = kicks(apps.iter().map(|a| (a.flow, a.group)));
+    let generators = std::iter::once(Generator::A)
+        .chain(kicks.into_iter().map(Generator::Kick))
+        .chain([Generator::O]);
+    for g in generators {
+        let of_g: Vec<&Application> = apps.iter().filter(|a| g.advanced_by(a)).collect();
         let (Some(first), Some(last)) = (of_g.first(), of_g.last()) else {
             continue;
         };
@@ -126,7 +142,8 @@ fn consistent(apps: &[Application]) -> Vec<Diagnostic> {
         if !one {
             errors.push(Diagnostic::new(
                 format!(
-                    "inconsistent scheme: the {g:?} coefficients ({carriers} stages) sum to {sum}, not 1; pass allow_inconsistent to accept it anyway"
+                    "inconsistent scheme: the {} sum to {sum}, not 1; pass allow_inconsistent to accept it anyway",
+                    g.describe()
                 ),
                 span,
             ));
