@@ -60,7 +60,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .build()?;
     let dt = sys.dt();
     let timed = |name: &str| !args.only_o || name == O;
-    let seconds = pool.install(|| -> Result<[f64; 5], dpd::BlowUp> {
+    let seconds = pool.install(|| -> Result<[f64; 5], dpd::AdvanceError> {
         sys.advance(&Aboba, 30)?;
         let mut seconds = [0.0; 5];
         for _ in 0..args.steps {

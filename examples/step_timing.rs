@@ -47,7 +47,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .dt(0.04)
             .skin(skin)
             .build()?;
-        let (seconds, fastest) = pool.install(|| -> Result<(f64, f64), dpd::BlowUp> {
+        let (seconds, fastest) = pool.install(|| -> Result<(f64, f64), dpd::AdvanceError> {
             // Relax the random start, then time in blocks of 10 steps.
             sys.advance(scheme, 50)?;
             let (mut total, mut fastest) = (0.0, f64::INFINITY);

@@ -8,7 +8,7 @@ extern crate dpd as dpd_core;
 mod common;
 
 use dpd::lang::Options;
-use dpd::{dpd_scheme, reference, DynScheme, Scheme, System};
+use dpd::{dpd_scheme, reference, AdvanceError, DynScheme, Scheme, System};
 
 const DT: f64 = 0.01;
 const SEED: u64 = 7;
@@ -85,7 +85,56 @@ fn generated_schemes_match_dyn_scheme_bitwise() {
         "A(sqrt(2)/4) B A(1/2 - sqrt(2)/4) O A(1/2) B",
         "BA O< O> AB",
         "A T< T> A",
+        "B[pair](1/4) (A(1/8) B[pair](1/8) A(1/8))^4 O B[pair](1/4)",
+        "F[pair](1/2) A F[pair](1/2)",
     );
+}
+
+/// On a fluid (no bonds) a scheme that names only the pair group kicks with the same forces
+/// as its ungrouped form, and runs bit for bit as it does, repetitions included.
+#[test]
+fn pair_groups_run_bitwise_as_the_ungrouped_scheme() {
+    assert_same_trajectory(
+        &dpd_scheme!("B[pair](1/2) A O A B[pair](1/2)"),
+        &dpd_scheme!("BAOAB"),
+        200,
+    );
+    assert_same_trajectory(
+        &dpd_scheme!("(B[pair](1/4) A(1/2) B[pair](1/4))^2 O"),
+        &dynamic("B(1/4) A(1/2) B(1/4) B(1/4) A(1/2) B(1/4) O"),
+        200,
+    );
+    assert_same_trajectory(
+        &dpd_scheme!("F[pair](1/2) A F[pair](1/2)"),
+        &reference::VelocityVerlet,
+        200,
+    );
+}
+
+/// `B[bond]` on a fluid without bonds: refused before the first step, naming the group, with
+/// the system untouched; the macro and the run-time compiler alike.
+#[test]
+fn a_bonded_kick_on_a_fluid_is_refused_before_the_first_step() {
+    const RESPA: &str = "B[pair](1/2) (B[bond](1/8) A(1/4) B[bond](1/8))^4 O B[pair](1/2)";
+    let generated = dpd_scheme!("B[pair](1/2) (B[bond](1/8) A(1/4) B[bond](1/8))^4 O B[pair](1/2)");
+    let compiled = dynamic(RESPA);
+    for scheme in [&generated as &dyn Scheme, &compiled] {
+        let mut sys = standard_box();
+        let before = sys.clone();
+        match sys.advance(scheme, 10) {
+            Err(AdvanceError::Scheme(e)) => {
+                let message = e.to_string();
+                assert!(
+                    message.contains("B[bond]") && message.contains("bonded forces"),
+                    "{message}"
+                );
+            }
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(sys.step(), 0);
+        assert!(common::same_bits(&before, &sys));
+        assert_eq!(sys.counters(), before.counters());
+    }
 }
 
 #[test]
@@ -104,6 +153,7 @@ fn evaluation_counts_match_the_program() {
         let steps = 20;
         sys.advance(&scheme, steps).unwrap();
         let after = sys.counters();
+        assert_eq!(after.bonded_force_evaluations, 0, "a fluid has no bonds");
         let per_step = |a: u64, b: u64| (a - b) as f64 / steps as f64;
         assert_eq!(
             (
@@ -122,6 +172,12 @@ fn evaluation_counts_match_the_program() {
     check(dpd_scheme!("OBAB"), 1, 1);
     check(dpd_scheme!("F(1/2) A F(1/2)"), 1, 1);
     check(dpd_scheme!("BAOAB"), 1, 2);
+    // Each inner drift is followed by a pair kick: five pair evaluations; none bonded.
+    check(
+        dpd_scheme!("B[pair](1/4) (A(1/8) B[pair](1/8) A(1/8))^4 O B[pair](1/4)"),
+        5,
+        5,
+    );
 }
 
 #[test]
@@ -152,7 +208,12 @@ fn program_exposes_stages_symmetry_and_analysis() {
 /// the same stages, coefficients (bits and exact values), streams and sweep orders.
 #[test]
 fn generated_program_is_the_compiled_program() {
-    let cases: [(&dyn Scheme, &str, bool); 6] = [
+    let cases: [(&dyn Scheme, &str, bool); 7] = [
+        (
+            &dpd_scheme!("B[pair](1/2) (B[bond](1/8) A(1/4) B[bond](1/8))^4 O B[pair](1/2)"),
+            "B[pair](1/2) (B[bond](1/8) A(1/4) B[bond](1/8))^4 O B[pair](1/2)",
+            false,
+        ),
         (&dpd_scheme!("ABOBA"), "ABOBA", false),
         (&dpd_scheme!("BAOOAB"), "BAOOAB", false),
         (&dpd_scheme!("ObBAB"), "ObBAB", false),

@@ -93,6 +93,18 @@ pub struct BlowUp {
     pub reason: String,
 }
 
+/// Why [`crate::System::advance`] stopped.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum AdvanceError {
+    /// The scheme cannot run on the system (it names a force group the system lacks, or
+    /// leaves out one it has); no step was taken.
+    #[error(transparent)]
+    Scheme(#[from] ParamError),
+    /// A step blew up and was undone.
+    #[error(transparent)]
+    BlowUp(#[from] BlowUp),
+}
+
 /// A checkpoint that cannot be written or read back.
 #[derive(Debug, Error)]
 pub enum CheckpointError {

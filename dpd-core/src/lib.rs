@@ -52,8 +52,8 @@ pub(crate) fn on_threads<R: Send>(threads: usize, f: impl FnOnce() -> R + Send) 
 }
 
 pub use boundary::{LeesEdwards, PeriodicBox};
-pub use dpd_ir::{Flow, Stage, SweepOrder};
-pub use error::{BlowUp, CheckpointError, ParamError};
+pub use dpd_ir::{Flow, ForceGroup, Stage, SweepOrder};
+pub use error::{AdvanceError, BlowUp, CheckpointError, ParamError};
 pub use params::Params;
 pub use scheme::{DynScheme, Scheme};
 pub use system::{System, SystemBuilder};

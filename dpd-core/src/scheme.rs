@@ -1,10 +1,10 @@
 //! The `Scheme` trait, [`System::advance`] and the run-time interpreter of a stage sequence
 //! (the guarded step that detects blow-ups is in `system/guard.rs`).
 
-use crate::error::BlowUp;
-use crate::flow::{bbk, drift, full_force, kick, ou, trotter};
+use crate::error::{AdvanceError, ParamError};
+use crate::flow::{bbk, drift, full_force, full_force_group, kick, kick_group, ou, trotter};
 use crate::system::System;
-use dpd_ir::{Diagnostic, Flow, Options, Program, Stage};
+use dpd_ir::{Diagnostic, Flow, ForceGroup, Options, Program, Stage};
 
 /// An integrator: one step of length `sys.dt()`.
 ///
@@ -58,9 +58,50 @@ impl System {
     /// Take `steps` steps of `scheme`, each guarded: a step that produces a non-finite position
     /// or momentum, or that may have moved a particle between two checks of the neighbour
     /// list by more than half the shortest box edge less the skin, is undone and reported; the
-    /// system is then in the state after the last good step.
-    pub fn advance<S: Scheme + ?Sized>(&mut self, scheme: &S, steps: u64) -> Result<(), BlowUp> {
-        self.guarded_steps(steps, scheme.name(), |sys| scheme.step(sys))
+    /// system is then in the state after the last good step. A scheme that cannot run on the
+    /// system ([`System::check_scheme`]) is refused before the first step.
+    pub fn advance<S: Scheme + ?Sized>(
+        &mut self,
+        scheme: &S,
+        steps: u64,
+    ) -> Result<(), AdvanceError> {
+        self.check_scheme(scheme)?;
+        Ok(self.guarded_steps(steps, scheme.name(), |sys| scheme.step(sys))?)
+    }
+
+    /// Whether `scheme` can run on this system: each force group its program names
+    /// (`B[bond]`) must be one the system has ([`System::force_groups`]), and each group the
+    /// system has must be applied by some stage (a scheme of `B[pair]` and `T` alone leaves the
+    /// bonded forces out). Hand-written schemes, without a program, are not checked.
+    pub fn check_scheme<S: Scheme + ?Sized>(&self, scheme: &S) -> Result<(), ParamError> {
+        let Some(program) = scheme.program() else {
+            return Ok(());
+        };
+        let has = self.force_groups();
+        let refuse = |why: String| Err(ParamError::new("scheme", scheme.name(), why));
+        if let Some(&g) = program.named_groups().iter().find(|g| !has.contains(g)) {
+            let name = dpd_ir::lang::letters::group_spelling(g);
+            return refuse(format!(
+                "it applies B[{name}], the {}, which this system does not have; write B (all forces) or B[pair]",
+                group_forces(g)
+            ));
+        }
+        if let Some(&g) = has.iter().find(|&&g| !program.applies(g)) {
+            let name = dpd_ir::lang::letters::group_spelling(g);
+            return refuse(format!(
+                "it never applies the {} of this system; add a B[{name}] stage, or use B or F for all forces",
+                group_forces(g)
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// What the forces of `group` are, for messages.
+fn group_forces(group: ForceGroup) -> &'static str {
+    match group {
+        ForceGroup::Pair => "pair forces",
+        ForceGroup::Bond => "bonded forces (bonds and angles)",
     }
 }
 
@@ -69,13 +110,15 @@ impl System {
 #[inline(always)]
 pub fn apply_stage(sys: &mut System, stage: &Stage) {
     let h = stage.coeff.value * sys.dt();
-    match stage.flow {
-        Flow::A => drift(sys, h),
-        Flow::B => kick(sys, h),
-        Flow::O => ou(sys, h, stage.stream, stage.order),
-        Flow::Bbk => bbk(sys, h, stage.stream, stage.order),
-        Flow::T => trotter(sys, h, stage.stream, stage.order),
-        Flow::F => full_force(sys, h, stage.stream),
+    match (stage.flow, stage.group) {
+        (Flow::A, _) => drift(sys, h),
+        (Flow::B, None) => kick(sys, h),
+        (Flow::B, Some(group)) => kick_group(sys, h, group),
+        (Flow::O, _) => ou(sys, h, stage.stream, stage.order),
+        (Flow::Bbk, _) => bbk(sys, h, stage.stream, stage.order),
+        (Flow::T, _) => trotter(sys, h, stage.stream, stage.order),
+        (Flow::F, None) => full_force(sys, h, stage.stream),
+        (Flow::F, Some(group)) => full_force_group(sys, h, stage.stream, group),
     }
 }
 

@@ -23,7 +23,7 @@ use crate::scene::Scene;
 use dpd_core::init::maxwell_momenta;
 use dpd_core::metropolis::Metropolis;
 use dpd_core::observe::{balance_defined, block_mean, EnergyBalance};
-use dpd_core::{BlowUp, ParamError, Scheme, System};
+use dpd_core::{AdvanceError, BlowUp, ParamError, Scheme, System};
 use serde::Serialize;
 use std::sync::atomic::Ordering;
 use std::sync::Mutex;
@@ -149,6 +149,15 @@ pub enum KlError {
     BlowUp(#[from] BlowUp),
     #[error("interrupted")]
     Interrupted,
+}
+
+impl From<AdvanceError> for KlError {
+    fn from(e: AdvanceError) -> Self {
+        match e {
+            AdvanceError::Scheme(e) => KlError::Input(e),
+            AdvanceError::BlowUp(e) => KlError::BlowUp(e),
+        }
+    }
 }
 
 /// Per-sample outcome of one chain: its works and timings.

@@ -117,6 +117,7 @@ pub fn run(
 ) -> Result<RunResult, ParamError> {
     let (dt, seed) = (job.dt, job.seed);
     let mut sys = scene.system(dt, seed)?;
+    sys.check_scheme(scheme)?;
     let steps = scene.steps(dt);
     let every = scene.sample_every(dt);
     let mut thermo_avg = ThermoAverages::new(steps, scene.average_fraction)?;

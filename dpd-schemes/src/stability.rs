@@ -14,7 +14,7 @@
 //! particles (thermal speed `sqrt(k_B T / m)`, 32 at m = 1e-3) that happens at large dt even
 //! for a scheme that would otherwise be stable, and is reported as a blow-up with that reason.
 
-use dpd_core::error::ParamError;
+use dpd_core::error::{AdvanceError, ParamError};
 use dpd_core::init::{cubic_box, maxwell_momenta, uniform_positions};
 use dpd_core::observe::{thermo, ThermoAverages};
 use dpd_core::reference::Aboba;
@@ -233,11 +233,15 @@ fn run_one(
     let stride = (matrix.steps / 2 / SAMPLES).max(1);
     while sys.step() < matrix.steps {
         let k = stride.min(matrix.steps - sys.step());
-        if let Err(blow_up) = sys.advance(scheme, k) {
-            return Ok(Outcome::BlowUp {
-                step: blow_up.step,
-                reason: blow_up.reason,
-            });
+        match sys.advance(scheme, k) {
+            Ok(()) => {}
+            Err(AdvanceError::BlowUp(blow_up)) => {
+                return Ok(Outcome::BlowUp {
+                    step: blow_up.step,
+                    reason: blow_up.reason,
+                })
+            }
+            Err(AdvanceError::Scheme(e)) => return Err(e),
         }
         if averages.wants(sys.step()) {
             averages.record(&thermo(&mut sys));

@@ -5,19 +5,19 @@
 mod common;
 
 use dpd_core::observe::ThermoSummary;
-use dpd_core::BlowUp;
+use dpd_core::AdvanceError;
 use dpd_schemes::lookup;
 use rayon::prelude::*;
 
 /// Runs `name` on the low-mass box; averages over the last 3/4.
-fn run(name: &str, dt: f64, steps: u64) -> (Result<ThermoSummary, BlowUp>, f64) {
+fn run(name: &str, dt: f64, steps: u64) -> (Result<ThermoSummary, AdvanceError>, f64) {
     let scheme = lookup(name).unwrap().scheme();
     let mut sys = common::low_mass_box(dt, 5);
     let summary = common::averages(&mut sys, &*scheme, steps, 10, 0.75);
     (summary, sys.total_momentum().norm())
 }
 
-fn report(name: &str, dt: f64, result: &(Result<ThermoSummary, BlowUp>, f64)) {
+fn report(name: &str, dt: f64, result: &(Result<ThermoSummary, AdvanceError>, f64)) {
     match &result.0 {
         Ok(s) => println!(
             "{name:>6} dt = {dt}: T_K - 1 = {:+.4}, T_C - 1 = {:+.4}, |P| = {:.3e}",

@@ -3,7 +3,7 @@
 
 use crate::{invalid, to_python, wait, BlowUpError};
 use dpd_core::observe::thermo;
-use dpd_core::{BlowUp, Scheme, System};
+use dpd_core::{AdvanceError, Scheme, System};
 use dpd_measure::Scene;
 use dpd_schemes::check::CheckError;
 use dpd_schemes::registry::resolve;
@@ -57,6 +57,7 @@ impl Simulation {
             })
         })?;
         let system = scene.system(scene.dt, scene.seed).map_err(invalid)?;
+        system.check_scheme(scheme.as_ref()).map_err(invalid)?;
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(scene.threads)
             .build()
@@ -86,10 +87,13 @@ impl Simulation {
                     system.advance(scheme.as_ref(), chunk)?;
                     left -= chunk;
                 }
-                Ok::<(), BlowUp>(())
+                Ok::<(), AdvanceError>(())
             })
         })?;
-        outcome.map_err(|e| BlowUpError::new_err(e.to_string()))
+        outcome.map_err(|e| match e {
+            AdvanceError::Scheme(e) => invalid(e),
+            AdvanceError::BlowUp(e) => BlowUpError::new_err(e.to_string()),
+        })
     }
 
     /// Positions, an (N, 3) array wrapped into the box.

@@ -9,6 +9,7 @@ use crate::params::Params;
 use crate::stamp::{Generation, Stamp};
 use crate::walls::{FrozenWalls, Walls};
 use crate::{Tensor, Vec3};
+use dpd_ir::ForceGroup;
 use rayon::prelude::*;
 
 /// Default Verlet skin in units of length: 0, cell lists rebuilt every step, which measured
@@ -16,14 +17,18 @@ use rayon::prelude::*;
 /// performance.md, "Neighbour skin"); a skin pays only when particles move little per step.
 pub const DEFAULT_SKIN: f64 = 0.0;
 
-/// How many evaluations the system has done; the generated schemes are checked against these.
+/// How many evaluations the system has done, per force group; the generated schemes are
+/// checked against these ([`dpd_ir::Evaluations`] counts the same per step).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Counters {
     /// Evaluations of the interacting pairs and their geometry.
     pub pair_distance_evaluations: u64,
-    /// Evaluations of per-particle forces (conservative for B, full for F) and inline pair
-    /// conservative forces of T sweeps.
+    /// Evaluations of the pair forces: per-particle sums (conservative for B and B[pair],
+    /// full for F and F[pair]) and the inline pair conservative forces of T sweeps.
     pub force_evaluations: u64,
+    /// Evaluations of the bonded forces (for B, F and B[bond]); a system without bonded
+    /// forces, as every system is until dpd-core models bonds, evaluates none.
+    pub bonded_force_evaluations: u64,
 }
 
 /// Positions, momenta, masses and types of N particles in a periodic box (optionally with
@@ -175,6 +180,11 @@ impl System {
     /// Neighbour skin (length): the list holds the pairs within `r_c + skin`.
     pub fn skin(&self) -> f64 {
         self.list.skin()
+    }
+    /// The force groups the system has, each a part of the forces a scheme may kick on its own
+    /// (`B[pair]`, `B[bond]`): the pair forces only, as dpd-core models no bonded forces yet.
+    pub fn force_groups(&self) -> &[ForceGroup] {
+        &[ForceGroup::Pair]
     }
     /// Number of neighbour-list builds so far.
     pub fn list_builds(&self) -> u64 {

@@ -4,7 +4,7 @@
 use dpd_core::flow::{bbk, drift, full_force, kick, ou, trotter};
 use dpd_core::init::equilibrium_box;
 use dpd_core::params::ParamsBuilder;
-use dpd_core::{Params, Scheme, SweepOrder, System, Vec3};
+use dpd_core::{AdvanceError, BlowUp, Params, Scheme, SweepOrder, System, Vec3};
 
 /// A system of `n` unit-mass particles at `density` with the given parameters, Maxwell
 /// momenta and uniform positions.
@@ -52,6 +52,14 @@ pub fn same_bits(a: &System, b: &System) -> bool {
             .collect()
     };
     a.ids() == b.ids() && bits(a) == bits(b)
+}
+
+/// The blow-up `outcome` of an advance reports; panics on anything else.
+pub fn blow_up(outcome: Result<(), AdvanceError>) -> BlowUp {
+    match outcome {
+        Err(AdvanceError::BlowUp(e)) => e,
+        other => panic!("expected a blow-up, found {other:?}"),
+    }
 }
 
 /// A step made of plain sub-flow calls, named for messages.

@@ -4,7 +4,7 @@
 use dpd_core::init::{cubic_box, maxwell_momenta, uniform_positions};
 use dpd_core::observe::{thermo, ThermoAverages, ThermoSummary};
 use dpd_core::params::ParamsBuilder;
-use dpd_core::{BlowUp, Params, Scheme, System};
+use dpd_core::{AdvanceError, Params, Scheme, System};
 
 /// `n` particles of mass `mass` at `density`, uniform positions, Maxwell momenta.
 pub fn system(
@@ -53,7 +53,7 @@ pub fn averages(
     steps: u64,
     every: u64,
     fraction: f64,
-) -> Result<ThermoSummary, BlowUp> {
+) -> Result<ThermoSummary, AdvanceError> {
     let mut avg = ThermoAverages::new(steps, fraction).unwrap();
     for _ in 0..steps / every {
         sys.advance(scheme, every)?;
