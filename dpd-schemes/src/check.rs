@@ -36,8 +36,12 @@ pub struct Check {
     /// [`Analysis::invariant_measure_error_norm`]).
     pub invariant_measure_error_norm: Option<f64>,
     pub symmetric: bool,
+    /// Pair-force evaluations per step.
     pub force_evaluations_per_step: usize,
     pub pair_distance_evaluations_per_step: usize,
+    /// Bonded-force evaluations per step on a system with bonded forces, counted apart from
+    /// the pair evaluations, which cost far more; null for hand-written schemes.
+    pub bonded_force_evaluations_per_step: Option<usize>,
     /// For a scheme with free parameters (`param`): the point analysed, name -> value (a
     /// generic point of the box unless given). Null for a scheme without parameters.
     pub parameters: Option<BTreeMap<String, f64>>,
@@ -76,6 +80,7 @@ impl Check {
             symmetric: program.is_symmetric(),
             force_evaluations_per_step: cost.force,
             pair_distance_evaluations_per_step: cost.pair_distance,
+            bonded_force_evaluations_per_step: Some(cost.bonded_force),
             parameters: None,
             analysis: Some(a),
         }
@@ -99,6 +104,7 @@ impl Check {
             symmetric: row.symmetric,
             force_evaluations_per_step: row.force_evaluations_per_step,
             pair_distance_evaluations_per_step: row.pair_distance_evaluations_per_step,
+            bonded_force_evaluations_per_step: None,
             parameters: None,
             analysis: None,
         }

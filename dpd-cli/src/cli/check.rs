@@ -49,10 +49,14 @@ pub fn main(args: Args) -> ExitCode {
         ),
     }
     outln!("symmetric: {}", yes(c.symmetric));
-    outln!(
+    out!(
         "evaluations per step: {} force, {} pair-distance",
         c.force_evaluations_per_step,
         c.pair_distance_evaluations_per_step
     );
+    match c.bonded_force_evaluations_per_step {
+        Some(b) => outln!(", {b} bonded-force (on a system with bonds)"),
+        None => outln!(),
+    }
     ExitCode::SUCCESS
 }

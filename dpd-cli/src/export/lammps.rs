@@ -81,8 +81,9 @@ pub struct Exported {
 }
 
 /// The program of a registry name or scheme string, or why it cannot be exported: unknown
-/// (the registry's message), hand-written, or inconsistent without `allow_inconsistent`. Every
-/// letter runs in the plugin (T only with `pair_style dpd/soft`, which the fix checks).
+/// (the registry's message), hand-written, naming force groups (`B[bond]`), or inconsistent
+/// without `allow_inconsistent`. Every letter runs in the plugin (T only with `pair_style
+/// dpd/soft`, which the fix checks).
 pub fn resolve(name: &str, allow_inconsistent: bool) -> Result<Exported, String> {
     let (label, program) = match lookup(name) {
         Ok(entry) => match entry.scheme().program() {
@@ -113,6 +114,12 @@ pub fn resolve(name: &str, allow_inconsistent: bool) -> Result<Exported, String>
             }
         }
     };
+    if program.stages.iter().any(|s| s.group.is_some()) {
+        return Err(format!(
+            "scheme '{name}' = {program} names force groups, which the plugin does not run: its \
+             kicks apply every force style of LAMMPS; write B and F without a group"
+        ));
+    }
     let consistent = program.analysis().consistent;
     if !consistent && !allow_inconsistent {
         return Err(format!(
@@ -284,6 +291,8 @@ mod tests {
             "{inconsistent}"
         );
         assert!(!resolve("A B(1/2) O", true).unwrap().consistent);
+        let grouped = resolve("A B[pair] O B[pair] A", false).unwrap_err();
+        assert!(grouped.contains("names force groups"), "{grouped}");
     }
 
     #[test]
