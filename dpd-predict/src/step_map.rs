@@ -10,7 +10,7 @@
 //! stream share it: the frozen noise of the PRK schemes), so a step is `z <- M z + G xi`.
 
 use crate::spectrum::Mode;
-use dpd_ir::{Flow, Program};
+use dpd_ir::{Flow, ForceGroup, Program};
 use nalgebra::{Matrix3, Vector3};
 
 /// The linear step `z <- M z + G xi` of one mode, `xi` standard normals, one per random
@@ -118,6 +118,9 @@ impl StepMap {
                         None,
                     )
                 }
+                // The modes are the pair forces': a kick of the bonded forces alone
+                // (`B[bond]`) leaves them as they are.
+                Flow::B if !stage.applies(ForceGroup::Pair) => (Matrix3::identity(), None),
                 Flow::B => {
                     points.push(ForcePoint {
                         kick: h,

@@ -64,6 +64,7 @@ fn sweeps_keep_the_maxwellian() {
             },
             stream: 0,
             order: SweepOrder::Forward,
+            group: None,
         };
         let sweep = Program {
             source: "sweep".into(),
