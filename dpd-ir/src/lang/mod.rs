@@ -207,6 +207,7 @@ mod expr;
 pub mod family;
 pub mod letters;
 mod lexer;
+pub mod list;
 mod lower;
 mod parse;
 mod validate;
@@ -215,6 +216,7 @@ mod value;
 pub use diagnostic::{escape, Diagnostic};
 pub use family::{compile_family, Family, Parameter, MAX_PARAMETERS};
 pub use letters::{Letter, LETTERS};
+pub use list::split_schemes;
 
 use crate::program::Program;
 
