@@ -1,7 +1,6 @@
 //! Results of independent runs (seeds) at one scheme and time step, combined.
 
-use super::flows::Viscosity;
-use super::runner::RunResult;
+use super::result::{RunResult, Viscosity};
 use super::scene::Observable;
 use dpd_core::observe::Running;
 use serde::Serialize;

@@ -172,8 +172,8 @@ struct ChainOutcome {
 }
 
 /// Estimate the configurational KL divergence of `scheme` at `dt` on `scene`'s system (its
-/// particles, box, masses and interactions; `scene.seed` keys chains and noise). Chains run on
-/// `scene.threads` workers (0: one per core), each with its share of the samples.
+/// particles, box, masses and interactions; its seed keys chains and noise). Chains run on
+/// its `threads` workers (0: one per core), each with its share of the samples.
 pub fn estimate(
     scene: &Scene,
     scheme: &(dyn Scheme + Sync),
@@ -182,7 +182,7 @@ pub fn estimate(
     control: Control,
 ) -> Result<KlResult, KlError> {
     let steps = spec.validate(dt)?;
-    let template = scene.system(dt, scene.seed)?;
+    let template = scene.system(dt, scene.run.seed)?;
     balance_defined(&template, scheme)?;
     if !scheme
         .program()
@@ -197,12 +197,7 @@ pub fn estimate(
         )
         .into());
     }
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let workers = match scene.threads {
-        0 => cores,
-        t => t,
-    }
-    .min(spec.samples as usize);
+    let workers = scene.run.workers().min(spec.samples as usize);
     let failure = Mutex::new(None);
     let outcomes: Vec<ChainOutcome> = std::thread::scope(|s| {
         let handles: Vec<_> = (0..workers)
@@ -346,11 +341,10 @@ mod tests {
     use std::sync::atomic::AtomicBool;
 
     fn scene() -> Scene {
-        Scene {
-            n: 200,
-            threads: 2,
-            ..Default::default()
-        }
+        let mut scene = Scene::default();
+        scene.geometry.n = 200;
+        scene.run.threads = 2;
+        scene
     }
 
     fn kl(scene: &Scene, scheme: &str, dt: f64, samples: u64) -> Result<KlResult, KlError> {
@@ -404,10 +398,8 @@ mod tests {
             ..KlSpec::default()
         };
         assert_eq!(long.validate(0.05).unwrap_err().field, "protocol_time");
-        let sheared = Scene {
-            shear_rate: Some(0.5),
-            ..scene()
-        };
+        let mut sheared = scene();
+        sheared.physics.shear_rate = Some(0.5);
         assert_eq!(refused(&sheared, "aboba", 20).field, "shear_rate");
     }
 }

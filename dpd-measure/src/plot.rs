@@ -2,7 +2,7 @@
 //! line, and radial distribution functions overlaid per dt; slab profiles of one run.
 
 use super::aggregate::Aggregate;
-use super::runner::RunResult;
+use super::result::RunResult;
 use super::scene::Observable;
 use super::sweep::{SweepResults, THRESHOLDS};
 use dpd_core::observe::ProfileRow;
@@ -102,7 +102,7 @@ where
             (s.scheme.as_str(), pts)
         })
         .collect();
-    let w = super::sweep::spec(&results.scene);
+    let w = results.scene.sweep_spec();
     let (x0, x1) = (w.dt_min / 1.1, w.dt_max * 1.1);
     let all = series.iter().flat_map(|(_, p)| p.iter().map(|&(_, e)| e));
     let (lo, hi) = all.fold((0.005f64, 0.2f64), |(lo, hi), e| (lo.min(e), hi.max(e)));

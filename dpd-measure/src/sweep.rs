@@ -2,16 +2,17 @@
 //! parallel (one point per worker, each single-threaded), resumable from the results file,
 //! summarised as critical step sizes, stability thresholds and efficiencies.
 
-use super::aggregate::Aggregate;
-use super::critical::{critical_dt, Critical};
-use super::runner::{lock, run_parallel, Control, Job, RunResult};
-use super::scene::{Observable, Scene, SceneError, SweepSpec};
+use crate::aggregate::Aggregate;
+use crate::batch::{distinct, unfinished, Batch};
+use crate::critical::{critical_dt, Critical};
+use crate::result::Job;
+use crate::result::RunResult;
+use crate::runner::Control;
+use crate::scene::section::json_keys;
+use crate::scene::{Observable, Scene, SceneError};
 use dpd_core::ParamError;
-use dpd_schemes::registry::resolve;
 use serde::{Deserialize, Serialize};
-use std::collections::HashMap;
 use std::path::Path;
-use std::sync::Mutex;
 use thiserror::Error;
 
 /// The two thresholds of the relative error of the sweep's observable (algorithms.md
@@ -63,7 +64,8 @@ pub struct SweepResults {
 /// finished runs of a paper item without a sweep ([`write_finished`]).
 #[derive(Deserialize)]
 struct Stored {
-    scene: Scene,
+    /// The scene as written: its keys, with null for what was not set.
+    scene: serde_json::Value,
     points: Vec<RunResult>,
 }
 
@@ -85,47 +87,27 @@ pub enum SweepError {
     Results { path: String, message: String },
 }
 
-/// The scene's sweep table, or the default one.
-pub fn spec(scene: &Scene) -> SweepSpec {
-    scene.sweep.clone().unwrap_or_default()
-}
-
 /// Every run of the sweep: schemes x grid x seeds, then the baseline runs not already among
 /// them; the longest (smallest dt) first within each scheme.
 pub fn plan(scene: &Scene) -> Vec<Job> {
-    let w = spec(scene);
-    let seeds = scene.seed..scene.seed + scene.runs;
-    let mut jobs: Vec<Job> = Vec::new();
+    let w = scene.sweep_spec();
     let baseline = std::iter::once((&w.baseline_scheme, w.baseline_dt()));
     let grid = w
         .schemes
         .iter()
         .flat_map(|s| w.grid().into_iter().map(move |dt| (s, dt)));
-    for (scheme, dt) in grid.chain(baseline) {
-        for seed in seeds.clone() {
-            let job = Job {
-                scheme: scheme.clone(),
-                dt,
-                seed,
-            };
-            if !jobs.iter().any(|j| j.matches(&job)) {
-                jobs.push(job);
-            }
-        }
-    }
-    jobs
+    distinct(grid.chain(baseline).flat_map(|(scheme, dt)| {
+        scene.run.seeds().map(move |seed| Job {
+            scheme: scheme.clone(),
+            dt,
+            seed,
+        })
+    }))
 }
 
 /// The planned runs of `scene` that are not among `finished`.
 pub fn pending(scene: &Scene, finished: &[RunResult]) -> Vec<Job> {
     unfinished(plan(scene), finished)
-}
-
-/// The `jobs` that are not among `finished`.
-pub fn unfinished(jobs: Vec<Job>, finished: &[RunResult]) -> Vec<Job> {
-    jobs.into_iter()
-        .filter(|j| !finished.iter().any(|p| p.job().matches(j)))
-        .collect()
 }
 
 /// Read the finished points of an earlier sweep or paper item of the same physical scene from
@@ -145,13 +127,16 @@ pub fn load_finished(path: &Path, scene: &Scene) -> Result<Vec<RunResult>, Sweep
         return Ok(Vec::new());
     }
     let stored: Stored = serde_json::from_str(&text).map_err(|e| error(e.to_string()))?;
+    let was = json_keys(stored.scene)
+        .and_then(|keys| Scene::from_keys(keys, "").map_err(|e| e.to_string()))
+        .map_err(|e| error(format!("its scene cannot be read: {e}")))?;
     let remedy = "choose another results file or remove it";
-    if let Some(key) = physics_difference(&stored.scene, scene) {
+    if let Some(key) = physics_difference(&was, scene) {
         return Err(error(format!(
             "it was written for a different scene ({key} differs); {remedy}"
         )));
     }
-    let (was, is) = (spec(&stored.scene).observable, spec(scene).observable);
+    let (was, is) = (was.sweep_spec().observable, scene.sweep_spec().observable);
     if was != is {
         return Err(error(format!(
             "it was written for sweep.observable = {}, not {}; {remedy}",
@@ -197,40 +182,40 @@ pub struct Hooks<'a> {
     pub on_point: &'a (dyn Fn(&SweepResults) + Sync),
 }
 
-/// Run the points of `scene`'s sweep that are not in `finished` (which stay in the results),
-/// on `scene.threads` workers (0: one per core).
+/// Run the points of `scene`'s sweep that are not in `finished` (which stay in the results,
+/// also those outside the plan, of a narrower sweep of the same scene), on
+/// `scene.run.threads` workers (0: one per core). Interrupted runs are left out.
 pub fn run_sweep(
     scene: &Scene,
     finished: Vec<RunResult>,
     hooks: Hooks,
 ) -> Result<SweepResults, SweepError> {
-    let w = spec(scene);
-    let mut schemes = HashMap::new();
-    for name in w.schemes.iter().chain([&w.baseline_scheme]) {
-        let scheme = resolve(name)
-            .map_err(|e| ParamError::new("sweep.schemes", name, format!("not a scheme: {e}")))?;
-        schemes.insert(name.clone(), scheme);
+    if let Some(t) = &scene.output.trajectory {
+        return Err(ParamError::new(
+            "trajectory.file",
+            t.file.display(),
+            "trajectories are written by `dpd run` only: remove [trajectory] for a sweep",
+        )
+        .into());
     }
-    // Finished points outside the plan (a narrower sweep of the same scene) are kept too.
-    let pending = pending(scene, &finished);
-    let points = Mutex::new(finished);
-    let on_result = |r: RunResult| {
-        if r.interrupted {
-            return;
-        }
-        let mut points = lock(&points);
-        points.push(r);
-        (hooks.on_point)(&SweepResults::new(scene, points.clone()));
+    let batch = Batch::new(scene, plan(scene))
+        .map_err(|e| ParamError::new("sweep.schemes", &e.scheme, format!("not a scheme: {e}")))?;
+    let completed = |points: &[RunResult]| -> Vec<RunResult> {
+        points.iter().filter(|p| !p.interrupted).cloned().collect()
     };
-    run_parallel(scene, &pending, &schemes, hooks.control, &on_result)?;
-    let points = points.into_inner().unwrap_or_else(|e| e.into_inner());
-    Ok(SweepResults::new(scene, points))
+    let save = |points: &[RunResult]| {
+        if points.last().is_some_and(|p| !p.interrupted) {
+            (hooks.on_point)(&SweepResults::new(scene, completed(points)));
+        }
+    };
+    let points = batch.run(finished, hooks.control, &save)?;
+    Ok(SweepResults::new(scene, completed(&points)))
 }
 
 impl SweepResults {
     /// Aggregate `points` of `scene`'s sweep.
     pub fn new(scene: &Scene, mut points: Vec<RunResult>) -> SweepResults {
-        let w = spec(scene);
+        let w = scene.sweep_spec();
         let planned = plan(scene);
         let index = |p: &RunResult| planned.iter().position(|j| j.matches(&p.job()));
         points.sort_by_key(|p| index(p).unwrap_or(usize::MAX));
@@ -242,7 +227,7 @@ impl SweepResults {
                 .iter()
                 .filter(|p| p.scheme == scheme && (p.dt - dt).abs() <= 1e-9 * dt)
                 .collect();
-            (!runs.is_empty()).then(|| Aggregate::of(&runs, scene.kbt))
+            (!runs.is_empty()).then(|| Aggregate::of(&runs, scene.physics.kbt))
         };
         let baseline = at(&w.baseline_scheme, w.baseline_dt());
         let mut rows: Vec<Aggregate> = w
@@ -260,7 +245,7 @@ impl SweepResults {
             .collect();
         let reference = summary
             .iter()
-            .find(|s| s.scheme == w.reference)
+            .find(|s| s.scheme == w.reference())
             .and_then(raw_efficiency);
         for s in &mut summary {
             s.efficiency = raw_efficiency(s).zip(reference).map(|(e, r)| e / r);
@@ -335,7 +320,8 @@ fn summarise(scheme: &str, rows: &[Aggregate], observable: Observable) -> Scheme
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::flows::Viscosity;
+    use crate::result::Viscosity;
+    use crate::scene::SweepSpec;
     use approx::assert_relative_eq;
     use std::sync::atomic::AtomicUsize;
     use std::sync::atomic::{AtomicBool, Ordering};
@@ -351,24 +337,25 @@ mod tests {
     }
 
     fn tiny() -> Scene {
-        Scene {
-            n: 100,
-            time: 1.0,
-            average_fraction: 0.5,
-            runs: 2,
-            threads: 2,
+        let mut scene = Scene {
             sweep: Some(SweepSpec {
                 schemes: vec!["aboba".into(), "vv".into()],
                 dt_min: 0.05,
                 dt_max: 0.1,
                 dt_factor: 2.0,
-                reference: "vv".into(),
+                reference: Some("vv".into()),
                 baseline_scheme: "aboba".into(),
                 baseline_dt: Some(0.025),
                 observable: Observable::ConfigurationalTemperature,
             }),
             ..Default::default()
-        }
+        };
+        scene.geometry.n = 100;
+        scene.run.time = 1.0;
+        scene.run.average_fraction = 0.5;
+        scene.run.runs = 2;
+        scene.run.threads = 2;
+        scene
     }
 
     fn sweep_counting(scene: &Scene, finished: Vec<RunResult>, ran: &AtomicUsize) -> SweepResults {
@@ -435,17 +422,16 @@ mod tests {
         SweepResults::new(&tiny(), Vec::new())
             .write_json(&path)
             .unwrap();
-        let other = Scene {
-            gamma: 40.5,
-            ..tiny()
-        };
+        let mut other = tiny();
+        other.physics.gamma = 40.5;
         let e = load_finished(&path, &other).unwrap_err().to_string();
         assert!(e.contains("gamma"), "{e}");
         let mut viscosity = tiny();
         viscosity.sweep.as_mut().unwrap().observable = Observable::Viscosity;
         let e = load_finished(&path, &viscosity).unwrap_err().to_string();
         assert!(e.contains("sweep.observable"), "{e}");
-        let more_runs = Scene { runs: 5, ..tiny() };
+        let mut more_runs = tiny();
+        more_runs.run.runs = 5;
         assert!(load_finished(&path, &more_runs).is_ok());
         assert!(load_finished(&dir.path().join("none.json"), &tiny())
             .unwrap()
@@ -461,8 +447,6 @@ mod tests {
             steps: 1,
             completed_steps: 1,
             stable: true,
-            error: None,
-            interrupted: false,
             samples: 1,
             kinetic_temperature: Some(1.0),
             configurational_temperature: Some(tc),
@@ -471,26 +455,19 @@ mod tests {
             ms_per_step: Some(ms),
             force_evaluations_per_step: Some(1.0),
             pair_distance_evaluations_per_step: Some(1.0),
-            rdf: None,
-            diffusion: None,
-            viscosity: None,
-            profile: None,
-            heat: None,
-            shadow_work: None,
+            ..RunResult::default()
         }
     }
 
     #[test]
     fn the_viscosity_observable_compares_with_the_baseline() {
-        let mut scene = Scene {
-            runs: 1,
-            shear_rate: Some(0.2),
-            ..tiny()
-        };
+        let mut scene = tiny();
+        scene.run.runs = 1;
+        scene.physics.shear_rate = Some(0.2);
         let w = scene.sweep.as_mut().unwrap();
         w.observable = Observable::Viscosity;
         w.schemes = vec!["vv".into()];
-        w.reference = "vv".into();
+        w.reference = Some("vv".into());
         // Viscosity 2 at the baseline; vv errs 5 % and 20 % (as dt^2; its T_C is exact): 10 %
         // at 0.05 sqrt(2).
         let sheared = |scheme: &str, dt: f64, eta: f64| RunResult {
@@ -531,11 +508,9 @@ mod tests {
         let e = plain.validate().unwrap_err();
         assert_eq!(e.field, "sweep.observable");
         // Between walls neither observable is measured.
-        let walls = Scene {
-            walls: Some(Default::default()),
-            box_lengths: Some([5.0, 5.0, 10.0]),
-            ..tiny()
-        };
+        let mut walls = tiny();
+        walls.geometry.walls = Some(Default::default());
+        walls.geometry.box_lengths = Some([5.0, 5.0, 10.0]);
         assert_eq!(walls.validate().unwrap_err().field, "sweep.observable");
     }
 
@@ -550,7 +525,8 @@ mod tests {
             point("aboba", 0.1, 1.05, 2.0),
             point("aboba", 0.2, 1.2, 2.0),
         ];
-        let mut scene = Scene { runs: 1, ..scene };
+        let mut scene = scene;
+        scene.run.runs = 1;
         scene.sweep.as_mut().unwrap().dt_max = 0.2;
         let r = SweepResults::new(&scene, points);
         let by = |name: &str| r.summary.iter().find(|s| s.scheme == name).unwrap();

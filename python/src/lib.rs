@@ -8,9 +8,7 @@ mod wait;
 
 use dpd_measure::kl::{estimate, KlError, KlSpec};
 use dpd_measure::sweep::{load_finished, run_sweep, Hooks};
-use dpd_measure::{
-    Control, Observable, Overrides, Scene, SchemeList, SweepOverrides, SweepResults,
-};
+use dpd_measure::{Control, Keys, Observable, Scene, SweepResults};
 use dpd_schemes::check::{check as check_scheme, CheckError};
 use dpd_schemes::registry::resolve;
 use dpd_schemes::registry::{entries, Row};
@@ -42,21 +40,28 @@ fn to_python<T: serde::Serialize>(py: Python<'_>, value: &T) -> PyResult<PyObjec
         .unbind())
 }
 
-/// The scene keys of `kwargs` (names of `dpd run`'s flags, `scene` a TOML file) applied to
-/// the scene file or the default scene, validated.
-fn scene_of(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Scene> {
-    let overrides: Overrides = match kwargs {
-        None => Overrides::default(),
-        Some(kwargs) => {
-            let kwargs = kwargs.copy()?;
-            if let Some(path) = kwargs.get_item("scene")? {
-                let os = kwargs.py().import("os")?;
-                kwargs.set_item("scene", os.call_method1("fspath", (path,))?)?;
-            }
-            depythonize(kwargs.as_any()).map_err(|e| invalid(format!("scene keys: {e}")))?
+/// The scene keys of `kwargs` (any key of a scene file; `scene` names a TOML file; a key given
+/// as None is left to the file) merged over the scene file or the default scene, with `more`
+/// over them, validated.
+fn scene_of(kwargs: Option<&Bound<'_, PyDict>>, more: &Keys) -> PyResult<Scene> {
+    let mut keys = Keys::new();
+    let mut file: Option<PathBuf> = None;
+    for (key, value) in kwargs.into_iter().flat_map(|k| k.iter()) {
+        let key: String = key.extract()?;
+        if value.is_none() {
+            continue;
         }
-    };
-    Scene::resolve(&overrides).map_err(invalid)
+        if key == "scene" {
+            let os = value.py().import("os")?;
+            file = Some(os.call_method1("fspath", (value,))?.extract()?);
+            continue;
+        }
+        let value: toml::Value =
+            depythonize(&value).map_err(|e| invalid(format!("scene key {key}: {e}")))?;
+        keys.insert(key, value);
+    }
+    dpd_measure::scene::section::merge(&mut keys, more);
+    Scene::resolve(file.as_deref(), &keys).map_err(invalid)
 }
 
 /// check(scheme)
@@ -106,16 +111,20 @@ fn sweep(
         .map(|o| depythonize(&o))
         .transpose()
         .map_err(|e| invalid(format!("observable: {e}")))?;
-    let mut scene = scene_of(scene)?;
-    let keys = SweepOverrides {
-        schemes: schemes.map(SchemeList),
-        dt_min,
-        dt_max,
-        dt_factor,
-        reference,
-        observable,
+    let mut table = Keys::new();
+    let mut set = |key: &str, value: Option<toml::Value>| {
+        if let Some(v) = value {
+            table.insert(key.into(), v);
+        }
     };
-    scene.apply_sweep(&keys).map_err(invalid)?;
+    set("schemes", schemes.map(|s| s.into()));
+    set("dt_min", dt_min.map(toml::Value::from));
+    set("dt_max", dt_max.map(toml::Value::from));
+    set("dt_factor", dt_factor.map(toml::Value::from));
+    set("reference", reference.map(toml::Value::from));
+    set("observable", observable.map(|o| o.name().into()));
+    let sweep_keys = Keys::from_iter([("sweep".to_string(), toml::Value::Table(table))]);
+    let scene = scene_of(scene, &sweep_keys)?;
     let finished = match &json {
         Some(path) if !fresh => load_finished(path, &scene).map_err(invalid)?,
         _ => Vec::new(),
@@ -168,7 +177,7 @@ fn kl(
     sweeps_between: Option<u64>,
     scene: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<PyObject> {
-    let scene = scene_of(scene)?;
+    let scene = scene_of(scene, &Keys::new())?;
     let defaults = KlSpec::default();
     let spec = KlSpec {
         samples: samples.unwrap_or(defaults.samples),
@@ -188,7 +197,7 @@ fn kl(
         progress: &|_| {},
     };
     let result = wait::interruptible(py, &stop, || {
-        estimate(&scene, scheme.as_ref(), scene.dt, &spec, control)
+        estimate(&scene, scheme.as_ref(), scene.run.dt, &spec, control)
     })?;
     match result {
         Ok(r) => to_python(py, &r),

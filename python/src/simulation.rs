@@ -49,19 +49,20 @@ impl Simulation {
     #[new]
     #[pyo3(signature = (**scene))]
     fn new(scene: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
-        let scene = crate::scene_of(scene)?;
-        let scheme = resolve(&scene.scheme).map_err(|reason| {
+        let scene = crate::scene_of(scene, &Default::default())?;
+        let run = &scene.run;
+        let scheme = resolve(&run.scheme).map_err(|reason| {
             invalid(CheckError {
-                scheme: scene.scheme.clone(),
+                scheme: run.scheme.clone(),
                 reason,
             })
         })?;
-        let system = scene.system(scene.dt, scene.seed).map_err(invalid)?;
+        let system = scene.system(run.dt, run.seed).map_err(invalid)?;
         system.check_scheme(scheme.as_ref()).map_err(invalid)?;
         let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(scene.threads)
+            .num_threads(run.threads)
             .build()
-            .map_err(|e| invalid(format!("invalid threads = {}: {e}", scene.threads)))?;
+            .map_err(|e| invalid(format!("invalid threads = {}: {e}", run.threads)))?;
         Ok(Simulation {
             scene,
             system,
@@ -162,8 +163,8 @@ impl Simulation {
     fn __repr__(&self) -> String {
         format!(
             "Simulation(scheme={:?}, dt={}, n={}, step={})",
-            self.scene.scheme,
-            self.scene.dt,
+            self.scene.run.scheme,
+            self.scene.run.dt,
             self.system.len(),
             self.system.step()
         )

@@ -4,10 +4,11 @@
 //! measured one.
 
 use super::predict::{spectrum_of, SpectrumArgs};
+use super::scene_flags::{SceneFlags, SweepFlags};
 use super::{bad_input, print_json, sweep};
 use dpd::design::{design, Design, Member, Objective};
 use dpd::lang::compile_family;
-use dpd_measure::{Overrides, Scene, SchemeList, SchemeSummary, SweepOverrides};
+use dpd_measure::SchemeSummary;
 use serde_json::{json, Value};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -38,7 +39,7 @@ pub struct Args {
     #[arg(long, value_name = "DIR", default_value = "results/design")]
     out: PathBuf,
     #[command(flatten)]
-    scene: Overrides,
+    scene: SceneFlags,
     /// What chooses the free parameters: `norm` (the order conditions, then the smallest
     /// error norm) or `predicted` (the longest predicted critical step of 10 % T_C error per
     /// force evaluation over the family's box, on the modes of --scene and --gamma, as `dpd
@@ -216,20 +217,17 @@ fn measure(d: &Design, args: &Args) -> ExitCode {
         return bad_input("invalid --top = 0: at least one member must be measured");
     }
     let chosen = candidates(d, args.top);
-    let mut scene = match Scene::resolve(&args.scene) {
-        Ok(scene) => scene,
-        Err(e) => return bad_input(e),
-    };
     let mut schemes: Vec<String> = chosen.iter().map(|m| m.program.clone()).collect();
     schemes.push(REFERENCE.to_string());
-    let sweep_keys = SweepOverrides {
-        schemes: Some(SchemeList(schemes.clone())),
+    let sweep_keys = SweepFlags {
+        schemes: Some(schemes.clone()),
         reference: Some(REFERENCE.to_string()),
         ..Default::default()
     };
-    if let Err(e) = scene.apply_sweep(&sweep_keys) {
-        return bad_input(e);
-    }
+    let scene = match sweep_keys.keys().and_then(|k| args.scene.scene_with(&k)) {
+        Ok(scene) => scene,
+        Err(e) => return bad_input(e),
+    };
     let json_path = args.out.join("design.json");
     let (results, written) = match sweep::measure(&scene, &json_path, &args.out, false) {
         Ok(done) => done,

@@ -1,12 +1,12 @@
 //! `dpd kl`: the KL divergence between the configurations a scheme samples and exp(-U/k_B T),
 //! estimated from shadow work ([`dpd_measure::kl`]).
 
+use super::scene_flags::SceneFlags;
 use super::{bad_input, print_json, progress, INTERRUPTED};
 use dpd::error::shown;
 use dpd::schemes::registry::resolve;
 use dpd_measure::kl::{estimate, KlError, KlSpec};
-use dpd_measure::runner::Control;
-use dpd_measure::{Overrides, Scene};
+use dpd_measure::Control;
 use std::process::ExitCode;
 
 #[derive(Debug, clap::Args)]
@@ -15,7 +15,7 @@ pub struct Args {
     #[arg(id = "kl-scheme", value_name = "SCHEME")]
     scheme: String,
     #[command(flatten)]
-    scene: Overrides,
+    scene: SceneFlags,
     /// Protocol samples (each: an equilibrium state and two halves of the protocol)
     #[arg(long, default_value_t = KlSpec::default().samples)]
     samples: u64,
@@ -36,7 +36,7 @@ pub fn main(args: Args) -> ExitCode {
             "--scheme {s}: give the scheme as the first argument of `dpd kl`"
         ));
     }
-    let scene = match Scene::resolve(&args.scene) {
+    let scene = match args.scene.scene() {
         Ok(scene) => scene,
         Err(e) => return bad_input(e),
     };
@@ -51,7 +51,8 @@ pub fn main(args: Args) -> ExitCode {
         ..KlSpec::default()
     };
     let name = shown(&args.scheme);
-    let steps = ((spec.protocol_time / scene.dt).round() as u64).max(1);
+    let dt = scene.run.dt;
+    let steps = ((spec.protocol_time / dt).round() as u64).max(1);
     match scheme.program() {
         Some(p) => errln!("# dpd: KL estimate of {name} = {p}"),
         None => errln!("# dpd: KL estimate of {name}"),
@@ -60,27 +61,24 @@ pub fn main(args: Args) -> ExitCode {
         "# dt = {}, {} samples of 2 x {steps} steps, {} Monte Carlo sweeps between samples\n\
          # N = {}, density = {}, a = {}, gamma = {}, kbt = {}, mass = {}, weight_exponent = {}, \
          seed = {}",
-        scene.dt,
+        dt,
         spec.samples,
         spec.sweeps_between,
-        scene.particles(),
-        scene.density,
-        scene.a,
-        scene.gamma,
-        scene.kbt,
-        scene.mass,
-        scene.weight_exponent,
-        scene.seed
+        scene.geometry.particles(),
+        scene.geometry.density,
+        scene.physics.a,
+        scene.physics.gamma,
+        scene.physics.kbt,
+        scene.physics.mass,
+        scene.physics.weight_exponent,
+        scene.run.seed
     );
-    let bar = progress::bar(
-        2 * steps * spec.samples,
-        format!("{name} dt = {}", scene.dt),
-    );
+    let bar = progress::bar(2 * steps * spec.samples, format!("{name} dt = {dt}"));
     let control = Control {
         stop: progress::stop_flag(),
         progress: &|n| bar.inc(n),
     };
-    let result = estimate(&scene, scheme.as_ref(), scene.dt, &spec, control);
+    let result = estimate(&scene, scheme.as_ref(), dt, &spec, control);
     bar.finish_and_clear();
     let r = match result {
         Ok(r) => r,
@@ -89,7 +87,7 @@ pub fn main(args: Args) -> ExitCode {
             return ExitCode::from(INTERRUPTED);
         }
         Err(KlError::BlowUp(b)) => {
-            errln!("dpd: the scheme blew up in a protocol, so it has no stationary distribution at dt = {}: {b}", scene.dt);
+            errln!("dpd: the scheme blew up in a protocol, so it has no stationary distribution at dt = {dt}: {b}");
             return ExitCode::FAILURE;
         }
         Err(e) => return bad_input(e),

@@ -12,6 +12,7 @@ mod predict;
 mod progress;
 mod reproduce;
 mod run;
+mod scene_flags;
 mod schemes;
 mod stability;
 mod sweep;

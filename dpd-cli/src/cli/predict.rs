@@ -5,7 +5,7 @@
 use super::{bad_input, print_json};
 use dpd::metropolis::Metropolis;
 use dpd::schemes::registry::resolve;
-use dpd_measure::{Overrides, Scene};
+use dpd_measure::{Keys, Scene};
 use dpd_predict::anharmonic;
 use dpd_predict::network::{self, PairModel};
 use dpd_predict::{Critical, Prediction, Predictor, Spectrum};
@@ -66,12 +66,11 @@ impl Default for SpectrumArgs {
 /// The spectrum the flags ask for, with the scene's friction and the seconds it took, or the
 /// message of bad input.
 pub fn spectrum_of(args: &SpectrumArgs) -> Result<(Spectrum, f64, f64), String> {
-    let overrides = Overrides {
-        scene: args.scene.clone(),
-        gamma: args.gamma,
-        ..Overrides::default()
-    };
-    let scene = Scene::resolve(&overrides).map_err(|e| e.to_string())?;
+    let mut keys = Keys::new();
+    if let Some(gamma) = args.gamma {
+        keys.insert("gamma".into(), gamma.into());
+    }
+    let scene = Scene::resolve(args.scene.as_deref(), &keys).map_err(|e| e.to_string())?;
     if let Some(why) = not_equilibrium(&scene) {
         return Err(format!(
             "the scene has {why}: predictions are for the periodic bulk at equilibrium"
@@ -87,7 +86,7 @@ pub fn spectrum_of(args: &SpectrumArgs) -> Result<(Spectrum, f64, f64), String> 
     }
     let start = Instant::now();
     let spectrum = scene_spectrum(&scene, args.spectrum_particles)?;
-    Ok((spectrum, scene.gamma, start.elapsed().as_secs_f64()))
+    Ok((spectrum, scene.physics.gamma, start.elapsed().as_secs_f64()))
 }
 
 /// Fewest and most particles of the spectrum's configuration: below 64 the box is under two
@@ -186,11 +185,11 @@ pub fn main(args: Args) -> ExitCode {
 
 /// Why the scene is not a periodic bulk at equilibrium, if it is not.
 fn not_equilibrium(scene: &Scene) -> Option<&'static str> {
-    if scene.walls.is_some() {
+    if scene.geometry.walls.is_some() {
         Some("walls")
-    } else if scene.shear_rate.is_some_and(|k| k != 0.0) {
+    } else if scene.physics.sheared() {
         Some("a shear rate")
-    } else if scene.body_force.is_some() {
+    } else if scene.physics.body_force.is_some() {
         Some("a body force")
     } else {
         None
@@ -201,11 +200,12 @@ fn not_equilibrium(scene: &Scene) -> Option<&'static str> {
 /// the scene's density and pair forces, sampled by a Monte Carlo chain on exp(-U / k_B T)
 /// (no integrator bias).
 fn scene_spectrum(scene: &Scene, particles: usize) -> Result<Spectrum, String> {
-    let params = scene.params().map_err(|e| e.to_string())?;
-    let bx = dpd::init::cubic_box(particles, scene.density).map_err(|e| e.to_string())?;
-    let q = dpd::init::uniform_positions(&bx, particles, scene.seed);
-    let mut mc = Metropolis::new(params, bx, &q, vec![0; particles], scene.seed)
-        .map_err(|e| e.to_string())?;
+    let (physics, seed) = (&scene.physics, scene.run.seed);
+    let params = physics.params().map_err(|e| e.to_string())?;
+    let bx = dpd::init::cubic_box(particles, scene.geometry.density).map_err(|e| e.to_string())?;
+    let q = dpd::init::uniform_positions(&bx, particles, seed);
+    let mut mc =
+        Metropolis::new(params, bx, &q, vec![0; particles], seed).map_err(|e| e.to_string())?;
     mc.equilibrate(EQUILIBRATION_SWEEPS);
     let positions = |mc: &Metropolis| -> Vec<[f64; 3]> {
         mc.positions().iter().map(|x| [x.x, x.y, x.z]).collect()
@@ -213,13 +213,13 @@ fn scene_spectrum(scene: &Scene, particles: usize) -> Result<Spectrum, String> {
     let q = positions(&mc);
     let l = bx.lengths();
     let edges = [l.x, l.y, l.z];
-    let masses = vec![scene.mass; particles];
+    let masses = vec![physics.mass; particles];
     let model = PairModel {
-        a: scene.a,
+        a: physics.a,
         rc: 1.0,
-        gamma: scene.gamma,
-        weight_exponent: scene.weight_exponent,
-        kbt: scene.kbt,
+        gamma: physics.gamma,
+        weight_exponent: physics.weight_exponent,
+        kbt: physics.kbt,
     };
     let mut spectrum = network::spectrum(&q, &masses, edges, model).map_err(|e| e.to_string())?;
     let configs: Vec<Vec<[f64; 3]>> = (0..RESPONSE_SAMPLES)

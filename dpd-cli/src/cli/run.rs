@@ -1,24 +1,19 @@
 //! `dpd run`: one scene with one scheme; prints the observables averaged over the runs.
 
+use super::scene_flags::SceneFlags;
 use super::{bad_input, print_json, progress, INTERRUPTED};
 use dpd::error::shown;
-use dpd::schemes::registry::resolve;
-use dpd::Scheme;
-use dpd_measure::flows::ProfileSpec;
 use dpd_measure::plot::profile_plot;
-use dpd_measure::runner::{lock, run_parallel, Control, Job, RunResult};
-use dpd_measure::trajectory::TrajectorySpec;
-use dpd_measure::{report, Aggregate, Overrides, Scene, SceneError};
+use dpd_measure::scene::{ProfileSpec, TrajectorySpec};
+use dpd_measure::{report, Aggregate, Batch, Control, Job, RunResult, Scene, SceneError};
 use serde::Serialize;
-use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::sync::Mutex;
 
 #[derive(Debug, clap::Args)]
 pub struct Args {
     #[command(flatten)]
-    scene: Overrides,
+    scene: SceneFlags,
     /// Print one JSON object on stdout instead of the table
     #[arg(long)]
     json: bool,
@@ -52,58 +47,59 @@ struct RunReport<'a> {
 }
 
 pub fn main(args: Args) -> ExitCode {
-    let scene = match Scene::resolve(&args.scene).and_then(|s| with_files(s, &args)) {
+    let scene = match args.scene.scene().and_then(|s| with_files(s, &args)) {
         Ok(scene) => scene,
         Err(e) => return bad_input(e),
     };
-    let scheme = match resolve(&scene.scheme) {
-        Ok(scheme) => scheme,
+    let (run, dt) = (&scene.run, scene.run.dt);
+    let jobs: Vec<Job> = run
+        .seeds()
+        .map(|seed| Job {
+            scheme: run.scheme.clone(),
+            dt,
+            seed,
+        })
+        .collect();
+    let batch = match Batch::new(&scene, jobs) {
+        Ok(batch) => batch,
         Err(e) => return bad_input(format!("invalid scheme: {e}")),
     };
-    let program = scheme.program().map(|p| p.to_string());
-    let name = shown(&scene.scheme);
+    let program = batch
+        .scheme(&run.scheme)
+        .and_then(|s| s.program())
+        .map(|p| p.to_string());
+    let name = shown(&run.scheme);
     let what = match &program {
         Some(p) => format!("scheme {name} = {p}"),
         None => format!("scheme {name}"),
     };
-    err!("{}", header(&scene, &what, &[scene.dt]));
-    let jobs: Vec<Job> = (0..scene.runs)
-        .map(|k| Job {
-            scheme: scene.scheme.clone(),
-            dt: scene.dt,
-            seed: scene.seed + k,
-        })
-        .collect();
+    err!("{}", header(&scene, &what, &[dt]));
     let bar = progress::bar(
-        scene.steps(scene.dt) * scene.runs,
-        format!("{name} dt = {}", shown(&scene.dt.to_string())),
+        run.steps(dt) * run.runs,
+        format!("{name} dt = {}", shown(&dt.to_string())),
     );
-    let results = Mutex::new(Vec::new());
     let control = Control {
         stop: progress::stop_flag(),
         progress: &|n| bar.inc(n),
     };
-    let schemes = HashMap::from([(scene.scheme.clone(), scheme)]);
-    let outcome = run_parallel(&scene, &jobs, &schemes, control, &|r| {
-        lock(&results).push(r)
-    });
+    let outcome = batch.run(Vec::new(), control, &|_| {});
     bar.finish_and_clear();
-    if let Err(e) = outcome {
-        return bad_input(e);
-    }
-    let mut results = results.into_inner().unwrap_or_else(|e| e.into_inner());
+    let mut results = match outcome {
+        Ok(results) => results,
+        Err(e) => return bad_input(e),
+    };
     results.sort_by_key(|r| r.seed);
     let refs: Vec<&RunResult> = results.iter().collect();
     let report = RunReport {
-        combined: Aggregate::of(&refs, scene.kbt),
-        steps: scene.steps(scene.dt),
-        interrupted: results.len() < jobs.len() || results.iter().any(|r| r.interrupted),
+        combined: Aggregate::of(&refs, scene.physics.kbt),
+        steps: run.steps(dt),
+        interrupted: results.len() < batch.jobs().len() || results.iter().any(|r| r.interrupted),
         program,
         results: &results,
         scene: &scene,
     };
     if let Some(dir) = &args.profile_dir {
-        if let Err(e) = write_profiles(&results, scene.profile.as_ref(), dir) {
+        if let Err(e) = write_profiles(&results, scene.observe.profile.as_ref(), dir) {
             errln!("error: writing profiles to {}: {e}", dir.display());
             return ExitCode::FAILURE;
         }
@@ -124,10 +120,10 @@ pub fn main(args: Args) -> ExitCode {
 /// `scene` with `--trajectory`/`--every` and `--init` applied, validated.
 fn with_files(mut scene: Scene, args: &Args) -> Result<Scene, SceneError> {
     if let (Some(file), Some(every)) = (&args.trajectory, args.every) {
-        scene.trajectory = Some(TrajectorySpec::new(file.clone(), every));
+        scene.output.trajectory = Some(TrajectorySpec::new(file.clone(), every));
     }
     if let Some(init) = &args.init {
-        scene.init = Some(init.clone());
+        scene.geometry.init = Some(init.clone());
     }
     scene.validate()?;
     Ok(scene)
@@ -141,9 +137,9 @@ pub fn header(scene: &Scene, what: &str, dts: &[f64]) -> String {
         out += &format!(
             "# at dt = {}: {} steps, a sample every {} steps in the last {} %\n",
             shown(&format!("{dt:.4}")),
-            scene.steps(dt),
-            scene.sample_every(dt),
-            100.0 * scene.average_fraction
+            scene.run.steps(dt),
+            scene.run.sample_every(dt),
+            100.0 * scene.run.average_fraction
         );
     }
     out + &scene.to_toml() + "\n"
@@ -155,7 +151,7 @@ fn print_table(r: &RunReport) {
         .iter()
         .map(|run| Aggregate {
             scheme: format!("seed {}", run.seed),
-            ..Aggregate::of(&[run], r.scene.kbt)
+            ..Aggregate::of(&[run], r.scene.physics.kbt)
         })
         .collect();
     if rows.len() > 1 {

@@ -2,9 +2,10 @@
 //! CSV, JSON (also the resumable results file) and SVG plots.
 
 use super::run::header;
+use super::scene_flags::{SceneFlags, SweepFlags};
 use super::{bad_input, progress, INTERRUPTED};
 use dpd_measure::sweep::{self, load_finished, run_sweep, Hooks};
-use dpd_measure::{plot, report, Control, Overrides, Scene, SweepOverrides, SweepResults};
+use dpd_measure::{plot, report, Control, Scene, SweepResults};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::atomic::Ordering;
@@ -15,9 +16,9 @@ const MAIN_SCENE: &str = include_str!("../../../scenes/main.toml");
 #[derive(Debug, clap::Args)]
 pub struct Args {
     #[command(flatten)]
-    scene: Overrides,
+    scene: SceneFlags,
     #[command(flatten)]
-    sweep: SweepOverrides,
+    sweep: SweepFlags,
     /// Results file: written after every finished point and read back to resume
     /// [default: OUT/sweep.json]
     #[arg(long, value_name = "FILE")]
@@ -31,13 +32,10 @@ pub struct Args {
 }
 
 pub fn main(args: Args) -> ExitCode {
-    let mut scene = match Scene::resolve(&args.scene) {
+    let scene = match args.sweep.keys().and_then(|k| args.scene.scene_with(&k)) {
         Ok(scene) => scene,
         Err(e) => return bad_input(e),
     };
-    if let Err(e) = scene.apply_sweep(&args.sweep) {
-        return bad_input(e);
-    }
     let json = args.json.unwrap_or_else(|| args.out.join("sweep.json"));
     execute(&scene, &json, &args.out, args.fresh)
 }
@@ -48,6 +46,9 @@ pub fn main_job() -> ExitCode {
         Ok(scene) => scene,
         Err(e) => return bad_input(e),
     };
+    if let Err(e) = scene.validate() {
+        return bad_input(e);
+    }
     errln!("dpd: the main job (scenes/main.toml); `dpd --help` lists the commands");
     let out = Path::new("results");
     execute(&scene, &out.join("main.json"), out, false)
@@ -58,14 +59,14 @@ fn execute(scene: &Scene, json: &Path, out: &Path, fresh: bool) -> ExitCode {
         Ok(done) => done,
         Err(code) => return code,
     };
-    let w = sweep::spec(scene);
+    let w = scene.sweep_spec();
     out!("{}", report::rows_table(&results.rows));
     outln!();
     outln!(
         "critical dt: where the relative error of the {} first reaches 10 % / 1 %",
         w.observable.name().replace('-', " ")
     );
-    out!("{}", report::summary_table(&results.summary, &w.reference));
+    out!("{}", report::summary_table(&results.summary, w.reference()));
     finish(&results, written, scene)
 }
 
@@ -78,7 +79,7 @@ pub fn measure(
     out: &Path,
     fresh: bool,
 ) -> Result<(SweepResults, Result<Vec<String>, String>), ExitCode> {
-    let w = sweep::spec(scene);
+    let w = scene.sweep_spec();
     let grid = w.grid();
     let ends: Vec<f64> = grid
         .first()
@@ -107,7 +108,7 @@ pub fn measure(
     if let Err(e) = std::fs::create_dir_all(out) {
         return Err(bad_input(format!("cannot create {}: {e}", out.display())));
     }
-    let total: u64 = pending.iter().map(|j| scene.steps(j.dt)).sum();
+    let total: u64 = pending.iter().map(|j| scene.run.steps(j.dt)).sum();
     let bar = progress::bar(total, format!("{} points", pending.len()));
     let save = |r: &SweepResults| {
         bar.set_message(format!("{} of {planned} points", r.points.len()));

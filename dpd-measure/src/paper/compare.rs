@@ -1,7 +1,8 @@
 //! Published against measured, number by number, with a verdict.
 
+use super::item::Item;
 use super::measure::{Measured, Measurements, Value};
-use super::{parse_printed, Item, Printed};
+use super::printed::{parse_printed, Printed};
 use serde::Serialize;
 
 /// A measured number whose 95 % error bar is wider than this fraction of the published

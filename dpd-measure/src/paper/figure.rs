@@ -1,31 +1,11 @@
 //! Figures of paper items redrawn as SVG from our runs.
 
+use super::item::{PlotKind, PlotSpec};
 use super::measure::Measurements;
 use crate::plot::{mean_rdf, profile_plot, rdf_plot, write_plots};
-use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
 type Error = Box<dyn std::error::Error>;
-
-/// What a figure draws.
-#[derive(Clone, Debug, PartialEq, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct PlotSpec {
-    pub kind: PlotKind,
-}
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum PlotKind {
-    /// Per panel (a sweep): relative errors of T_C (or the sweep's observable), T_K, U and P
-    /// against dt on log-log axes, and g(r) per scheme where the scene has `[rdf]`.
-    Errors,
-    /// g(r) of every (scheme, dt) of the runs, averaged over seeds.
-    Rdf,
-    /// The slab profiles (x-velocity, density, temperature) of every (scheme, dt), the first
-    /// seed's.
-    Profile,
-}
 
 /// Draw `spec` for each of `panels` (named) into `dir`; the files written.
 pub fn draw(
@@ -62,7 +42,7 @@ pub fn draw(
                     let Some(rows) = runs.first().and_then(|r| r.profile.as_ref()) else {
                         continue;
                     };
-                    let axis = m.scene.profile.as_ref().map_or(2, |p| p.axis);
+                    let axis = m.scene.observe.profile.as_ref().map_or(2, |p| p.axis);
                     let path = dir.join(format!("{name}-profile-{scheme}-dt{dt}.svg"));
                     profile_plot(rows, axis, &path)?;
                     written.push(path);

@@ -1,55 +1,23 @@
 //! The runs of a paper item and the quantities read from them, each with its standard error.
 
-use super::Item;
+use super::item::Item;
 use crate::aggregate::Aggregate;
+use crate::batch::{distinct, Batch};
 use crate::critical::{critical_dt, Critical};
-use crate::runner::{lock, run_parallel, Control, Job, RunResult};
+use crate::result::Job;
+use crate::result::{RunResult, Viscosity};
+use crate::runner::Control;
 use crate::scene::{Observable, Scene};
 use crate::sweep::{self, load_finished, run_sweep, Hooks, SweepError, SweepResults};
 use dpd_core::observe::Running;
 use dpd_core::ParamError;
-use dpd_schemes::registry::resolve;
 use serde::Serialize;
-use std::collections::HashMap;
 use std::path::Path;
-use std::sync::Mutex;
-
-/// The quantities a published row can name. Per scheme (rows without `dt`, sweeps only):
-/// critical step sizes at 10 % and 1 % relative error of the sweep's observable, the
-/// efficiencies (critical dt per ms of a step, relative to the sweep's reference scheme) at
-/// both thresholds, and the largest stable grid dt. Per (scheme, dt): means over the runs'
-/// averages; `*_temperature_error` is |T - k_B T| / k_B T; `channel_temperature` is the
-/// particle-weighted mean of the slab temperatures of `[profile]` (each sample's slab velocity
-/// subtracted).
-pub const QUANTITIES: [&str; 13] = [
-    "critical_dt_10",
-    "critical_dt_1",
-    "efficiency",
-    "efficiency_1",
-    "stability_dt",
-    "kinetic_temperature",
-    "kinetic_temperature_error",
-    "configurational_temperature",
-    "configurational_temperature_error",
-    "potential_energy",
-    "diffusion",
-    "shear_viscosity",
-    "channel_temperature",
-];
-
-/// The quantities of [`QUANTITIES`] that are time steps, which a paper may print as steps of
-/// its grid (`[published_grid]`).
-pub const STEPS: [&str; 3] = ["critical_dt_10", "critical_dt_1", "stability_dt"];
 
 /// Relative uncertainty given to each scheme's measured cost per step in an efficiency: the
 /// runs share two cores with other work, and repeated runs of the main job differed by up to
 /// this much (docs/results.md).
 pub const TIMING_UNCERTAINTY: f64 = 0.10;
-
-/// Whether `name` is one of [`QUANTITIES`].
-pub fn is_quantity(name: &str) -> bool {
-    QUANTITIES.contains(&name)
-}
 
 /// A measured number with its standard error (`None` when it cannot be estimated, e.g. from
 /// a single run) and the degrees of freedom of that error (`None`: many).
@@ -140,24 +108,14 @@ pub fn run_item(
             sweep: Some(results),
         }));
     }
-    let jobs = point_jobs(item, &scene);
-    let mut schemes = HashMap::new();
-    for job in &jobs {
-        let scheme = resolve(&job.scheme)
-            .map_err(|e| ParamError::new("published.scheme", &job.scheme, e.to_string()))?;
-        schemes.insert(job.scheme.clone(), scheme);
-    }
-    let pending = sweep::unfinished(jobs, &finished);
-    let points = Mutex::new(finished);
-    let on_result = |r: RunResult| {
-        let mut points = lock(&points);
-        points.push(r);
-        // A file that cannot be written only loses resumability; an interrupted run is
-        // kept for this printout and run again by the next invocation.
-        let _ = sweep::write_finished(&json, &scene, &points);
+    let batch = Batch::new(&scene, point_jobs(item, &scene))
+        .map_err(|e| ParamError::new("published.scheme", &e.scheme, e.to_string()))?;
+    // A file that cannot be written only loses resumability; an interrupted run is kept for
+    // this printout and run again by the next invocation.
+    let save = |points: &[RunResult]| {
+        let _ = sweep::write_finished(&json, &scene, points);
     };
-    run_parallel(&scene, &pending, &schemes, control, &on_result)?;
-    let mut points = points.into_inner().unwrap_or_else(|e| e.into_inner());
+    let mut points = batch.run(finished, control, &save)?;
     points.sort_by(|a, b| {
         (&a.scheme, a.dt, a.seed)
             .partial_cmp(&(&b.scheme, b.dt, b.seed))
@@ -172,21 +130,16 @@ pub fn run_item(
 
 /// The distinct (scheme, dt) of the published rows, times the scene's seeds.
 fn point_jobs(item: &Item, scene: &Scene) -> Vec<Job> {
-    let mut jobs: Vec<Job> = Vec::new();
-    for row in &item.published {
-        let Some(dt) = row.dt else { continue };
-        for seed in scene.seed..scene.seed + scene.runs {
-            let job = Job {
-                scheme: row.scheme.clone(),
+    distinct(item.published.iter().flat_map(|row| {
+        let points = row.dt.map(|dt| (row.scheme.clone(), dt));
+        points.into_iter().flat_map(|(scheme, dt)| {
+            scene.run.seeds().map(move |seed| Job {
+                scheme: scheme.clone(),
                 dt,
                 seed,
-            };
-            if !jobs.iter().any(|j| j.matches(&job)) {
-                jobs.push(job);
-            }
-        }
-    }
-    jobs
+            })
+        })
+    }))
 }
 
 /// Mean and standard error of the mean of the `Some` values.
@@ -226,7 +179,7 @@ impl Measurements {
         if runs.iter().any(|r| !r.stable) {
             return Measured::BlowUp;
         }
-        let kbt = self.scene.kbt;
+        let kbt = self.scene.physics.kbt;
         let over = |f: &dyn Fn(&RunResult) -> Option<f64>| mean_of(runs.iter().map(|r| f(r)));
         let relative =
             |f: fn(&RunResult) -> Option<f64>| over(&|r| f(r).map(|t| (t - kbt).abs() / kbt));
@@ -239,9 +192,7 @@ impl Measurements {
             "diffusion" => over(&|r| r.diffusion),
             "channel_temperature" => over(&|r| channel_temperature(r)),
             "shear_viscosity" => {
-                let v = crate::flows::Viscosity::combine(
-                    &runs.iter().map(|r| r.viscosity).collect::<Vec<_>>(),
-                );
+                let v = Viscosity::combine(&runs.iter().map(|r| r.viscosity).collect::<Vec<_>>());
                 v.and_then(|v| {
                     Some(Value {
                         value: v.shear_viscosity?,
@@ -259,15 +210,15 @@ impl Measurements {
         let Some(sweep) = &self.sweep else {
             return missing(format!("{quantity} needs a sweep ([scene.sweep])"));
         };
-        let w = sweep::spec(&self.scene);
+        let w = self.scene.sweep_spec();
         let Some(summary) = sweep.summary.iter().find(|s| s.scheme == scheme) else {
             return missing(format!("{scheme} is not among the sweep's schemes"));
         };
         match quantity {
             "critical_dt_10" => self.critical(scheme, 0),
             "critical_dt_1" => self.critical(scheme, 1),
-            "efficiency" => self.efficiency(scheme, &w.reference, 0),
-            "efficiency_1" => self.efficiency(scheme, &w.reference, 1),
+            "efficiency" => self.efficiency(scheme, w.reference(), 0),
+            "efficiency_1" => self.efficiency(scheme, w.reference(), 1),
             "stability_dt" => summary.stability_dt.map_or(Measured::BlowUp, |dt| {
                 Measured::Value(Value {
                     value: dt,
@@ -296,7 +247,7 @@ impl Measurements {
             rows.iter()
                 .map(|r| {
                     let e = r.critical_error(sweep.observable);
-                    let s = stderr_of_error(r, sweep.observable, self.scene.kbt, base_eta);
+                    let s = stderr_of_error(r, sweep.observable, self.scene.physics.kbt, base_eta);
                     // A blow-up (infinite error) stays one, and an unshifted curve needs no
                     // error bar (`inf + 0 * NaN` would be NaN).
                     let v = if shift == 0.0 || e.is_infinite() {
@@ -323,8 +274,8 @@ impl Measurements {
             .zip(bound(-1.0))
             .map(|(lo, hi)| (0.5 * (hi - lo)).hypot(bracket));
         let dof = match sweep.observable {
-            Observable::ConfigurationalTemperature => self.scene.runs as usize - 1,
-            Observable::Viscosity => self.scene.runs as usize * (VISCOSITY_BLOCKS - 1),
+            Observable::ConfigurationalTemperature => self.scene.run.runs as usize - 1,
+            Observable::Viscosity => self.scene.run.runs as usize * (VISCOSITY_BLOCKS - 1),
         };
         Measured::Value(Value {
             value: dt,

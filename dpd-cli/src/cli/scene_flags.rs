@@ -1,0 +1,141 @@
+//! The flags that set scene keys: each replaces the key of the same name in the scene file (or
+//! the default scene), which checks it as it checks the file's own keys.
+
+use dpd::lang::split_schemes;
+use dpd_measure::scene::section::merge;
+use dpd_measure::{Keys, Observable, Scene, SceneError};
+use serde::Serialize;
+use std::path::PathBuf;
+
+/// The scene file and the top-level scene keys that have flags.
+#[derive(Clone, Debug, Default, clap::Args, Serialize)]
+pub struct SceneFlags {
+    /// Scene file (TOML); default: the standard gamma = 4.5 box
+    #[arg(long, value_name = "FILE")]
+    #[serde(skip)]
+    pub scene: Option<PathBuf>,
+    /// Registry name or scheme string
+    #[arg(long)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub scheme: Option<String>,
+    #[arg(long, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gamma: Option<f64>,
+    /// Time step
+    #[arg(long, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dt: Option<f64>,
+    /// Run length in time units
+    #[arg(long, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub time: Option<f64>,
+    /// Number of particles
+    #[arg(long, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub n: Option<usize>,
+    #[arg(long, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub density: Option<f64>,
+    /// Conservative repulsion
+    #[arg(long, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub a: Option<f64>,
+    /// Target temperature k_B T
+    #[arg(long, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub kbt: Option<f64>,
+    #[arg(long, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mass: Option<f64>,
+    #[arg(long, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub weight_exponent: Option<f64>,
+    /// Seed of the first run
+    #[arg(long, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub seed: Option<u64>,
+    /// Independent runs (seeds)
+    #[arg(long, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub runs: Option<u64>,
+    /// Worker threads (0: one per core)
+    #[arg(long, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub threads: Option<usize>,
+    /// Lees-Edwards shear rate kappa (measures the shear viscosity)
+    #[arg(long, value_name = "KAPPA", allow_hyphen_values = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shear_rate: Option<f64>,
+    /// Measure heat and shadow work over the averaging window (schemes of A, B, O, Ob)
+    #[arg(long)]
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub energy_balance: bool,
+}
+
+/// The `[sweep]` keys that have flags.
+#[derive(Clone, Debug, Default, clap::Args, Serialize)]
+pub struct SweepFlags {
+    /// Schemes to compare, comma-separated registry names or scheme strings (commas inside
+    /// brackets or parentheses, as in `prk(b = [...], ...)`, belong to the scheme)
+    #[arg(long, value_parser = split_schemes, value_name = "SCHEMES")]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub schemes: Option<Vec<String>>,
+    /// Smallest time step of the grid
+    #[arg(long, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dt_min: Option<f64>,
+    /// Largest time step of the grid
+    #[arg(long, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dt_max: Option<f64>,
+    /// Ratio of neighbouring time steps (default 1.15)
+    #[arg(long, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dt_factor: Option<f64>,
+    /// Scheme whose efficiency is 1 (default: vv if swept, else the first scheme)
+    #[arg(long)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reference: Option<String>,
+    /// Whose relative error gives the critical dt: T_C against k_B T (default) or, in a
+    /// sheared scene, the shear viscosity against the baseline run
+    #[arg(long, value_parser = observable_names())]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub observable: Option<String>,
+}
+
+fn observable_names() -> clap::builder::PossibleValuesParser {
+    Observable::ALL.map(Observable::name).into()
+}
+
+/// `value`'s fields as scene keys: `Serialize` turns a struct into a table, and no flag
+/// struct holds what TOML cannot.
+fn keys_of(value: &impl Serialize) -> Result<Keys, SceneError> {
+    Keys::try_from(value).map_err(|e| SceneError::Toml {
+        path: "(flags)".into(),
+        message: e.to_string(),
+    })
+}
+
+impl SceneFlags {
+    /// The scene file with the flags' keys applied, validated.
+    pub fn scene(&self) -> Result<Scene, SceneError> {
+        self.scene_with(&Keys::new())
+    }
+
+    /// The scene file with the flags' keys and then `more` applied, validated.
+    pub fn scene_with(&self, more: &Keys) -> Result<Scene, SceneError> {
+        let mut keys = keys_of(self)?;
+        merge(&mut keys, more);
+        Scene::resolve(self.scene.as_deref(), &keys)
+    }
+}
+
+impl SweepFlags {
+    /// The flags as the scene key `sweep`: a table that is there even when no flag is given,
+    /// so that a scene without `[sweep]` is swept with the default table.
+    pub fn keys(&self) -> Result<Keys, SceneError> {
+        let mut keys = Keys::new();
+        keys.insert("sweep".into(), toml::Value::Table(keys_of(self)?));
+        Ok(keys)
+    }
+}

@@ -1,0 +1,38 @@
+//! The thermodynamics every run averages over its window: T_K, T_C (a ratio of averages), the
+//! potential energy per particle and the virial pressure.
+
+use super::interface::{Boxed, End, Observer, Setup};
+use crate::result::RunResult;
+use dpd_core::observe::{thermo, ThermoAverages};
+use dpd_core::{ParamError, System};
+
+struct Thermo {
+    averages: ThermoAverages,
+    /// Between walls T_C and the periodic virial pressure are not the bulk quantities.
+    walls: bool,
+}
+
+pub(super) fn new<'a>(setup: &Setup<'a>, _: &mut System) -> Result<Option<Boxed<'a>>, ParamError> {
+    let averages = ThermoAverages::new(setup.steps, setup.scene.run.average_fraction)?;
+    let walls = setup.scene.geometry.walls.is_some();
+    Ok(Some(Box::new(Thermo { averages, walls })))
+}
+
+impl Observer for Thermo {
+    fn sample(&mut self, sys: &mut System, _: u64) -> Result<(), ParamError> {
+        self.averages.record(&thermo(sys));
+        Ok(())
+    }
+
+    fn finish(self: Box<Self>, _: &mut System, end: &End, result: &mut RunResult) {
+        let s = self.averages.summary();
+        let observed = |x: f64| (end.stable && s.samples > 0 && x.is_finite()).then_some(x);
+        // Between walls the sums include frozen particles and the wall forces.
+        let bulk = |x: f64| observed(x).filter(|_| !self.walls);
+        result.samples = s.samples;
+        result.kinetic_temperature = observed(s.kinetic_temperature);
+        result.configurational_temperature = bulk(s.configurational_temperature);
+        result.potential_energy = observed(s.potential_energy);
+        result.pressure = bulk(s.pressure);
+    }
+}

@@ -1,0 +1,202 @@
+//! Scenes: what to simulate and how long, read from TOML or from keys given by a caller (the
+//! command line's flags, Python's keywords), validated with messages that name the key.
+//!
+//! A scene names only what it needs; every key has the default of the standard equilibrium box
+//! of algorithms.md section 8 (N = 500, density 3, a = 25, gamma = 4.5, k_B T = 1, m = 1,
+//! s = 2, 1000 time units averaged over the last 80 %). Its keys stay flat in the file, as
+//! users write them, and belong to sections that read and check themselves:
+//!
+//! | section | file | keys |
+//! |---|---|---|
+//! | [`RunSpec`] | `run.rs` | `scheme`, `dt`, `time`, `average_fraction`, `sample_interval`, `seed`, `runs`, `threads` |
+//! | [`Physics`] | `physics.rs` | `a`, `gamma`, `kbt`, `mass`, `weight_exponent`, `shear_rate`, `body_force` |
+//! | [`Geometry`] | `geometry.rs` | `n`, `density`, `box`, `skin`, `init`, `[walls]` |
+//! | [`Observe`] | `observe.rs` | `[rdf]`, `[vacf]`, `[profile]`, `energy_balance` |
+//! | [`Output`] | `output.rs` | `description`, `[trajectory]` |
+//! | [`SweepSpec`] | `sweep.rs` | `[sweep]` |
+//!
+//! Each section takes its keys out of the parsed table ([`section::take`]); a key no section
+//! takes is refused with the nearest known one. To add a section (species, bonds, molecules):
+//! write its file with a `Serialize + Deserialize + Default` struct (`deny_unknown_fields`,
+//! `default`) and a `validate` that names its keys, add it to [`Scene`] as a `flatten`ed field,
+//! take it in [`Scene::from_keys`] and check it in [`Scene::validate`]. How the system is built
+//! from the sections is in `build.rs`.
+
+mod build;
+mod check;
+pub mod geometry;
+pub mod observe;
+pub mod output;
+pub mod physics;
+pub mod run;
+pub mod section;
+pub mod sweep;
+
+pub use check::{MAX_PARTICLES, MAX_STEPS, MAX_THREADS_PER_CORE};
+pub use geometry::{Geometry, WallSpec};
+pub use observe::{Observe, ProfileSpec, RdfSpec, VacfSpec};
+pub use output::{Field, Output, TrajectorySpec};
+pub use physics::Physics;
+pub use run::RunSpec;
+pub use section::Keys;
+pub use sweep::{Observable, SweepSpec};
+
+use dpd_core::ParamError;
+use section::{names, take, take_table, unknown};
+use serde::Serialize;
+use std::path::Path;
+use thiserror::Error;
+
+/// One simulation set-up, by section. It serialises flat, with the keys of a scene file.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Scene {
+    #[serde(flatten)]
+    pub output: Output,
+    #[serde(flatten)]
+    pub run: RunSpec,
+    #[serde(flatten)]
+    pub physics: Physics,
+    #[serde(flatten)]
+    pub geometry: Geometry,
+    #[serde(flatten)]
+    pub observe: Observe,
+    pub sweep: Option<SweepSpec>,
+}
+
+/// A scene that cannot be read or is not valid.
+#[derive(Debug, Error)]
+pub enum SceneError {
+    #[error("scene {path}: {source}")]
+    Io {
+        path: String,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("scene {path}: {message}")]
+    Toml { path: String, message: String },
+    #[error("scene: {0}")]
+    Invalid(#[from] ParamError),
+}
+
+impl Scene {
+    /// Read a scene from its keys; `path` names their source in messages. Not validated.
+    pub fn from_keys(mut keys: Keys, path: &str) -> Result<Scene, SceneError> {
+        let error = |message: String| SceneError::Toml {
+            path: path.into(),
+            message,
+        };
+        let mut scene = Scene {
+            output: take(&mut keys).map_err(error)?,
+            run: take(&mut keys).map_err(error)?,
+            physics: take(&mut keys).map_err(error)?,
+            geometry: take(&mut keys).map_err(error)?,
+            observe: take(&mut keys).map_err(error)?,
+            sweep: take_table(&mut keys, "sweep").map_err(error)?,
+        };
+        let known: Vec<&str> = [
+            names::<Output>(),
+            names::<RunSpec>(),
+            names::<Physics>(),
+            names::<Geometry>(),
+            names::<Observe>(),
+            &["sweep"],
+        ]
+        .concat();
+        if let Some(message) = unknown(&keys, &known) {
+            return Err(error(message));
+        }
+        // The header and the results file show the reference the sweep uses.
+        if let Some(w) = &mut scene.sweep {
+            w.reference = Some(w.reference().to_string());
+        }
+        Ok(scene)
+    }
+
+    /// Parse TOML text; `path` names the source in messages. Not validated.
+    pub fn from_toml(text: &str, path: &str) -> Result<Scene, SceneError> {
+        Scene::from_keys(parse(text, path)?, path)
+    }
+
+    /// Read a scene file. Not validated.
+    pub fn load(path: &Path) -> Result<Scene, SceneError> {
+        Scene::from_keys(read(path)?, &path.display().to_string())
+    }
+
+    /// The scene file `file` (or the default scene) with `keys` merged over its own (tables
+    /// key by key), validated. `keys` are scene keys as a scene file writes them: the command
+    /// line's flags and Python's keywords arrive here.
+    pub fn resolve(file: Option<&Path>, keys: &Keys) -> Result<Scene, SceneError> {
+        let (mut base, path) = match file {
+            Some(path) => (read(path)?, path.display().to_string()),
+            None => (Keys::new(), "(default)".to_string()),
+        };
+        section::merge(&mut base, keys);
+        let scene = Scene::from_keys(base, &path)?;
+        scene.validate()?;
+        Ok(scene)
+    }
+
+    /// Check every key; the first invalid one is reported by name.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        self.run.validate()?;
+        self.physics.validate()?;
+        self.geometry.validate()?;
+        self.observe.validate(self.geometry.shortest_edge()?)?;
+        self.output.validate()?;
+        if let Some(w) = &self.sweep {
+            let walls = self.geometry.walls.is_some();
+            w.validate(self.run.time, self.physics.sheared(), walls)?;
+        }
+        Ok(())
+    }
+
+    /// The `[sweep]` table, or the default one.
+    pub fn sweep_spec(&self) -> SweepSpec {
+        self.sweep.clone().unwrap_or_default()
+    }
+
+    /// Samples between g(r) records at `dt` (at least 1); see [`RdfSpec::interval`].
+    pub fn rdf_stride(&self, dt: f64) -> u64 {
+        let sample = self.run.sample_every(dt) as f64 * dt;
+        match self.observe.rdf.as_ref().and_then(|r| r.interval) {
+            Some(interval) => ((interval / sample).round() as u64).max(1),
+            None => 1,
+        }
+    }
+
+    /// The effective parameters as TOML, for headers; with `box`, the ignored `n` is left out
+    /// and the particle count given in a comment.
+    pub fn to_toml(&self) -> String {
+        let mut table = match toml::Table::try_from(self) {
+            Ok(table) => table,
+            Err(e) => return format!("(scene not printable: {e})"),
+        };
+        let mut out = String::new();
+        if self.geometry.box_lengths.is_some() {
+            table.remove("n");
+            out = format!(
+                "# {} particles (density x box volume)\n",
+                self.geometry.particles()
+            );
+        }
+        out + &table.to_string()
+    }
+}
+
+fn parse(text: &str, path: &str) -> Result<Keys, SceneError> {
+    toml::from_str(text).map_err(|e| SceneError::Toml {
+        path: path.into(),
+        message: e.to_string(),
+    })
+}
+
+fn read(path: &Path) -> Result<Keys, SceneError> {
+    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+        path: path.display().to_string(),
+        source,
+    })?;
+    parse(&text, &path.display().to_string())
+}
+
+#[cfg(test)]
+mod tests;
