@@ -146,7 +146,7 @@ fn frame(sys: &mut System, fields: &[Field]) -> Frame {
             let t = thermo(sys);
             let values = [
                 t.kinetic_temperature,
-                t.config_numerator / t.config_denominator,
+                configurational_temperature(t.config_numerator, t.config_denominator),
                 t.potential_energy,
                 t.pressure,
             ];
@@ -174,10 +174,48 @@ fn frame(sys: &mut System, fields: &[Field]) -> Frame {
     }
 }
 
+/// `k_B T_C` of one state, `sum |F^C|^2 / sum lap U`, or NaN (undefined) where the Laplacian
+/// sum is not positive. The soft potential's Laplacian, `a (3 r - 2) / r` for r_c = 1, is
+/// negative for pairs closer than 2/3: a random start, full of such pairs, can have a sum near
+/// zero or below it, and the quotient is then no temperature (-437378 was once logged).
+fn configurational_temperature(numerator: f64, denominator: f64) -> f64 {
+    if denominator > 0.0 {
+        numerator / denominator
+    } else {
+        f64::NAN
+    }
+}
+
 /// Type `t`'s name: A, B, ... Z, then T26, T27, ...
 fn type_name(t: u32) -> String {
     match char::from_u32(u32::from(b'A') + t) {
         Some(c) if t < 26 => c.to_string(),
         _ => format!("T{t}"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Scene;
+
+    /// A uniform random start of the standard box has more pairs closer than 2/3 than the
+    /// fluid: its Laplacian sum is negative here (seed 3, N = 300), and frame 0 logged
+    /// T_C = -28.2. It is undefined there, and a number again once the fluid has relaxed.
+    #[test]
+    fn t_c_is_undefined_where_the_laplacian_sum_is_not_positive() {
+        assert!(configurational_temperature(5.0, -0.1).is_nan());
+        assert!(configurational_temperature(5.0, 0.0).is_nan());
+        assert_eq!(configurational_temperature(5.0, 2.0), 2.5);
+        let mut scene = Scene::default();
+        scene.geometry.n = 300;
+        let mut sys = scene.system(0.05, 3).unwrap();
+        let logged = |sys: &mut System| frame(sys, &[Field::Observables]).log[1].1;
+        assert!(thermo(&mut sys).config_denominator <= 0.0);
+        assert!(logged(&mut sys).is_nan());
+        let aboba = dpd_schemes::registry::resolve("aboba").unwrap();
+        sys.advance(aboba.as_ref(), 40).unwrap();
+        let t_c = logged(&mut sys);
+        assert!(t_c > 0.5 && t_c < 2.0, "{t_c}");
     }
 }
