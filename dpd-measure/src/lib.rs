@@ -13,6 +13,7 @@
 
 pub mod aggregate;
 pub mod batch;
+pub mod cost;
 pub mod critical;
 pub mod images;
 pub mod kl;

@@ -4,13 +4,14 @@
 
 use crate::aggregate::Aggregate;
 use crate::batch::{distinct, unfinished, Batch};
+use crate::cost::{self, Cost};
 use crate::critical::{critical_dt, Critical};
 use crate::result::Job;
 use crate::result::RunResult;
 use crate::runner::Control;
 use crate::scene::section::json_keys;
 use crate::scene::{Observable, Scene, SceneError};
-use dpd_core::ParamError;
+use dpd_core::{ParamError, Scheme};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use thiserror::Error;
@@ -35,7 +36,8 @@ pub struct SchemeSummary {
     pub stability_dt: Option<f64>,
     /// Smallest grid dt where a run blew up (`None`: stable over the whole grid).
     pub first_blow_up_dt: Option<f64>,
-    /// Mean integration cost over the stable points, milliseconds per step.
+    /// Integration cost in milliseconds per step, measured after the runs (see
+    /// [`crate::cost`]); `None` before that or where the scheme blew up while timed.
     pub ms_per_step: Option<f64>,
     pub force_evaluations_per_step: Option<f64>,
     /// (critical_dt_10 / ms_per_step), divided by the same for the reference scheme.
@@ -56,6 +58,8 @@ pub struct SweepResults {
     /// The small-dt run the potential energy, pressure and viscosity are compared with.
     pub baseline: Option<Aggregate>,
     pub summary: Vec<SchemeSummary>,
+    /// How the costs per step of the summary were measured (`None` before the runs ended).
+    pub cost: Option<Cost>,
     /// Every planned point is in `points`.
     pub complete: bool,
 }
@@ -205,16 +209,23 @@ pub fn run_sweep(
     };
     let save = |points: &[RunResult]| {
         if points.last().is_some_and(|p| !p.interrupted) {
-            (hooks.on_point)(&SweepResults::new(scene, completed(points)));
+            (hooks.on_point)(&SweepResults::new(scene, completed(points), None));
         }
     };
     let points = batch.run(finished, hooks.control, &save)?;
-    Ok(SweepResults::new(scene, completed(&points)))
+    let w = scene.sweep_spec();
+    let schemes: Vec<_> = w
+        .schemes
+        .iter()
+        .filter_map(|s| Some((s.as_str(), batch.scheme(s)? as &(dyn Scheme + Sync))))
+        .collect();
+    let cost = cost::measure(scene, &schemes, w.dt_min, hooks.control)?;
+    Ok(SweepResults::new(scene, completed(&points), cost))
 }
 
 impl SweepResults {
-    /// Aggregate `points` of `scene`'s sweep.
-    pub fn new(scene: &Scene, mut points: Vec<RunResult>) -> SweepResults {
+    /// Aggregate `points` of `scene`'s sweep, with the schemes' `cost` per step if measured.
+    pub fn new(scene: &Scene, mut points: Vec<RunResult>, cost: Option<Cost>) -> SweepResults {
         let w = scene.sweep_spec();
         let planned = plan(scene);
         let index = |p: &RunResult| planned.iter().position(|j| j.matches(&p.job()));
@@ -241,7 +252,7 @@ impl SweepResults {
         let mut summary: Vec<SchemeSummary> = w
             .schemes
             .iter()
-            .map(|s| summarise(s, &rows, w.observable))
+            .map(|s| summarise(s, &rows, w.observable, cost.as_ref()))
             .collect();
         let reference = summary
             .iter()
@@ -257,6 +268,7 @@ impl SweepResults {
             rows,
             baseline,
             summary,
+            cost,
             complete,
         }
     }
@@ -288,8 +300,13 @@ fn raw_efficiency(s: &SchemeSummary) -> Option<f64> {
 }
 
 /// Critical step sizes (of `observable`'s error), stability and cost of `scheme` from its
-/// `rows`.
-fn summarise(scheme: &str, rows: &[Aggregate], observable: Observable) -> SchemeSummary {
+/// `rows` and the measured `cost`.
+fn summarise(
+    scheme: &str,
+    rows: &[Aggregate],
+    observable: Observable,
+    cost: Option<&Cost>,
+) -> SchemeSummary {
     let rows: Vec<&Aggregate> = rows.iter().filter(|r| r.scheme == scheme).collect();
     let curve: Vec<(f64, f64)> = rows
         .iter()
@@ -311,7 +328,7 @@ fn summarise(scheme: &str, rows: &[Aggregate], observable: Observable) -> Scheme
         critical_1: c1,
         stability_dt: stable_until.checked_sub(1).map(|k| rows[k].dt),
         first_blow_up_dt: first_unstable.map(|k| rows[k].dt),
-        ms_per_step: mean(|r| r.ms_per_step),
+        ms_per_step: cost.and_then(|c| c.of(scheme)),
         force_evaluations_per_step: mean(|r| r.force_evaluations_per_step),
         efficiency: None,
     }
@@ -395,7 +412,7 @@ mod tests {
         let path = dir.path().join("sweep.json");
         let mut partial = full.points.clone();
         partial.truncate(6);
-        SweepResults::new(&scene, partial)
+        SweepResults::new(&scene, partial, None)
             .write_json(&path)
             .unwrap();
         let finished = load_finished(&path, &scene).unwrap();
@@ -419,7 +436,7 @@ mod tests {
     fn a_results_file_of_another_scene_is_refused() {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("sweep.json");
-        SweepResults::new(&tiny(), Vec::new())
+        SweepResults::new(&tiny(), Vec::new(), None)
             .write_json(&path)
             .unwrap();
         let mut other = tiny();
@@ -482,7 +499,7 @@ mod tests {
             sheared("vv", 0.1, 2.4),
             sheared("aboba", 0.025, 2.0),
         ];
-        let r = SweepResults::new(&scene, points.clone());
+        let r = SweepResults::new(&scene, points.clone(), None);
         assert_eq!(r.observable, Observable::Viscosity);
         assert_relative_eq!(
             r.rows[1].shear_viscosity_relative_error.unwrap(),
@@ -500,7 +517,7 @@ mod tests {
         );
         // The default observable sees the exact T_C: nothing crosses.
         scene.sweep.as_mut().unwrap().observable = Observable::ConfigurationalTemperature;
-        let t = SweepResults::new(&scene, points);
+        let t = SweepResults::new(&scene, points, None);
         assert_eq!(t.summary[0].critical_dt_10, None);
         // Without a shear rate the viscosity observable is refused by name.
         let mut plain = tiny();
@@ -518,17 +535,26 @@ mod tests {
     fn efficiency_is_relative_to_the_reference() {
         let scene = tiny();
         // Both errors grow as dt^2 and cross 10 % at 0.05 sqrt(2) (vv) and 0.1 sqrt(2)
-        // (aboba, at twice the cost per step): equally efficient.
+        // (aboba, at twice the cost per step): equally efficient. The points' own ms/step
+        // (3 for both, as under load) do not count: the measured cost does.
         let points = vec![
-            point("vv", 0.05, 1.05, 1.0),
-            point("vv", 0.1, 1.2, 1.0),
-            point("aboba", 0.1, 1.05, 2.0),
-            point("aboba", 0.2, 1.2, 2.0),
+            point("vv", 0.05, 1.05, 3.0),
+            point("vv", 0.1, 1.2, 3.0),
+            point("aboba", 0.1, 1.05, 3.0),
+            point("aboba", 0.2, 1.2, 3.0),
         ];
         let mut scene = scene;
         scene.run.runs = 1;
         scene.sweep.as_mut().unwrap().dt_max = 0.2;
-        let r = SweepResults::new(&scene, points);
+        let cost = Cost {
+            dt: 0.05,
+            window_steps: 10,
+            windows: 20,
+            ms_per_step: vec![("vv".into(), Some(1.0)), ("aboba".into(), Some(2.0))],
+        };
+        let untimed = SweepResults::new(&scene, points.clone(), None);
+        assert!(untimed.summary.iter().all(|s| s.efficiency.is_none()));
+        let r = SweepResults::new(&scene, points, Some(cost));
         let by = |name: &str| r.summary.iter().find(|s| s.scheme == name).unwrap();
         let root2 = 2f64.sqrt();
         assert_relative_eq!(

@@ -67,6 +67,9 @@ fn execute(scene: &Scene, json: &Path, out: &Path, fresh: bool) -> ExitCode {
         w.observable.name().replace('-', " ")
     );
     out!("{}", report::summary_table(&results.summary, w.reference()));
+    if let Some(cost) = &results.cost {
+        outln!("{}", cost.describe());
+    }
     finish(&results, written, scene)
 }
 
