@@ -18,11 +18,15 @@ pub struct Aggregate {
     /// The first blow-up message, if any.
     pub error: Option<String>,
     pub kinetic_temperature: Option<f64>,
+    /// Standard error of the mean over runs (this and the other `_stderr` need two stable
+    /// runs).
+    pub kinetic_temperature_stderr: Option<f64>,
     pub configurational_temperature: Option<f64>,
-    /// Standard error of the mean of T_C over runs (needs two stable runs).
     pub configurational_temperature_stderr: Option<f64>,
     pub potential_energy: Option<f64>,
+    pub potential_energy_stderr: Option<f64>,
     pub pressure: Option<f64>,
+    pub pressure_stderr: Option<f64>,
     pub ms_per_step: Option<f64>,
     pub force_evaluations_per_step: Option<f64>,
     /// Mean diffusion coefficient, where the runs measured one.
@@ -55,6 +59,13 @@ fn mean(values: impl Iterator<Item = Option<f64>>) -> Option<f64> {
     (r.count() > 0).then(|| r.mean())
 }
 
+/// Standard error of the mean of the `Some` values, `None` with fewer than two.
+fn stderr(values: impl Iterator<Item = Option<f64>>) -> Option<f64> {
+    let mut r = Running::default();
+    values.flatten().for_each(|x| r.push(x));
+    (r.count() >= 2).then(|| (r.variance() / r.count() as f64).sqrt())
+}
+
 fn relative(value: Option<f64>, reference: Option<f64>) -> Option<f64> {
     let (v, r) = (value?, reference?);
     (r != 0.0).then(|| (v - r) / r.abs())
@@ -65,11 +76,7 @@ impl Aggregate {
     pub fn of(runs: &[&RunResult], kbt: f64) -> Aggregate {
         let stable: Vec<_> = runs.iter().filter(|r| r.stable).copied().collect();
         let over = |f: fn(&RunResult) -> Option<f64>| mean(stable.iter().map(|r| f(r)));
-        let mut tc = Running::default();
-        stable
-            .iter()
-            .filter_map(|r| r.configurational_temperature)
-            .for_each(|x| tc.push(x));
+        let spread = |f: fn(&RunResult) -> Option<f64>| stderr(stable.iter().map(|r| f(r)));
         let kinetic_temperature = over(|r| r.kinetic_temperature);
         let configurational_temperature = over(|r| r.configurational_temperature);
         Aggregate {
@@ -80,11 +87,13 @@ impl Aggregate {
             stable: stable.len() == runs.len(),
             error: runs.iter().find_map(|r| r.error.clone()),
             kinetic_temperature,
+            kinetic_temperature_stderr: spread(|r| r.kinetic_temperature),
             configurational_temperature,
-            configurational_temperature_stderr: (tc.count() >= 2)
-                .then(|| (tc.variance() / tc.count() as f64).sqrt()),
+            configurational_temperature_stderr: spread(|r| r.configurational_temperature),
             potential_energy: over(|r| r.potential_energy),
+            potential_energy_stderr: spread(|r| r.potential_energy),
             pressure: over(|r| r.pressure),
+            pressure_stderr: spread(|r| r.pressure),
             ms_per_step: mean(runs.iter().map(|r| r.ms_per_step)),
             force_evaluations_per_step: mean(runs.iter().map(|r| r.force_evaluations_per_step)),
             diffusion: over(|r| r.diffusion),

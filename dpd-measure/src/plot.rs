@@ -20,16 +20,97 @@ const COLOURS: [RGBColor; 6] = [
     RGBColor(23, 190, 207),
 ];
 
-/// A relative error of a row.
-type Column = fn(&Aggregate) -> Option<f64>;
+/// What a panel needs of its sweep besides a row: k_B T and the baseline row.
+struct Context<'a> {
+    kbt: f64,
+    baseline: Option<&'a Aggregate>,
+}
 
-/// The error panels after the observable's: title and relative error of a row (plotted as
-/// its absolute value).
-const PANELS: [(&str, Column); 3] = [
-    ("|T_K error|", |r| r.kinetic_temperature_error),
-    ("|U error| vs baseline", |r| r.potential_energy_error),
-    ("|P error| vs baseline", |r| r.pressure_error),
+/// A relative error of a row, and the standard error of that relative error.
+type Column = fn(&Aggregate) -> Option<f64>;
+type Spread = fn(&Aggregate, &Context) -> Option<f64>;
+
+/// One panel: its title, the signed relative error of a row and its standard error.
+struct Panel {
+    title: &'static str,
+    error: Column,
+    stderr: Spread,
+}
+
+/// The standard error of `(x - b) / |b|` for a row's mean `x` and the baseline's `b`, each with
+/// its standard error (the baseline's may be absent: one run).
+fn against_baseline(
+    x: Option<f64>,
+    s: Option<f64>,
+    b: Option<f64>,
+    s_b: Option<f64>,
+) -> Option<f64> {
+    let (_, s, b) = (x?, s?, b?);
+    Some(s.hypot(s_b.unwrap_or(0.0)) / b.abs())
+}
+
+const T_C: Panel = Panel {
+    title: "|T_C error|",
+    error: |r| r.configurational_temperature_error,
+    stderr: |r, c| Some(r.configurational_temperature_stderr? / c.kbt),
+};
+
+const ETA: Panel = Panel {
+    title: "|eta error| vs baseline",
+    error: |r| r.shear_viscosity_relative_error,
+    stderr: |r, c| {
+        let b = c.baseline?.viscosity?;
+        let v = r.viscosity?;
+        let (s, s_b) = (v.shear_viscosity_error, b.shear_viscosity_error);
+        against_baseline(v.shear_viscosity, s, b.shear_viscosity, s_b)
+    },
+};
+
+/// The error panels after the observable's.
+const PANELS: [Panel; 3] = [
+    Panel {
+        title: "|T_K error|",
+        error: |r| r.kinetic_temperature_error,
+        stderr: |r, c| Some(r.kinetic_temperature_stderr? / c.kbt),
+    },
+    Panel {
+        title: "|U error| vs baseline",
+        error: |r| r.potential_energy_error,
+        stderr: |r, c| {
+            let b = c.baseline?;
+            against_baseline(
+                r.potential_energy,
+                r.potential_energy_stderr,
+                b.potential_energy,
+                b.potential_energy_stderr,
+            )
+        },
+    },
+    Panel {
+        title: "|P error| vs baseline",
+        error: |r| r.pressure_error,
+        stderr: |r, c| {
+            let b = c.baseline?;
+            against_baseline(r.pressure, r.pressure_stderr, b.pressure, b.pressure_stderr)
+        },
+    },
 ];
+
+/// Tick values for a log axis over `[lo, hi]`: 1, 2 and 5 (and, over less than two decades,
+/// also 1.5, 3 and 7) times the powers of ten inside it.
+fn log_ticks(lo: f64, hi: f64) -> Vec<f64> {
+    let fine = hi / lo < 100.0;
+    let mantissas: &[f64] = if fine {
+        &[1.0, 1.5, 2.0, 3.0, 5.0, 7.0]
+    } else {
+        &[1.0, 2.0, 5.0]
+    };
+    let (first, last) = (lo.log10().floor() as i32, hi.log10().ceil() as i32);
+    (first..=last)
+        .flat_map(|e| mantissas.iter().map(move |m| m * 10f64.powi(e)))
+        .filter(|&t| t >= lo && t <= hi)
+        .collect()
+}
 
 /// Write `errors.svg` (four error panels: the sweep's observable, T_K, U, P) and one `rdf-<scheme>.svg` per scheme with RDF data
 /// into `dir`; returns the files written.
@@ -63,32 +144,37 @@ fn file_name(scheme: &str) -> String {
 fn errors(results: &SweepResults, path: &Path) -> Result<(), Error> {
     let root = SVGBackend::new(path, (1200, 900)).into_drawing_area();
     root.fill(&WHITE)?;
-    let observable: (&str, Column) = match results.observable {
-        Observable::ConfigurationalTemperature => {
-            ("|T_C error|", |r| r.configurational_temperature_error)
-        }
-        Observable::Viscosity => ("|eta error| vs baseline", |r| {
-            r.shear_viscosity_relative_error
-        }),
+    let observable = match results.observable {
+        Observable::ConfigurationalTemperature => T_C,
+        Observable::Viscosity => ETA,
     };
     let panels = std::iter::once(observable).chain(PANELS);
-    for (area, (title, f)) in root.split_evenly((2, 2)).iter().zip(panels) {
-        error_panel(area, results, title, f)?;
+    for (area, panel) in root.split_evenly((2, 2)).iter().zip(panels) {
+        error_panel(area, results, &panel)?;
     }
     root.present()?;
     Ok(())
 }
 
+/// A point of an error panel: dt, the signed relative error and its standard error.
+type ErrorPoint = (f64, f64, Option<f64>);
+
+/// |error| against dt on log-log axes, one series per scheme: a filled marker where the error
+/// is positive, a hollow one where it is negative, a bar of one standard error either way
+/// (down to the axis where it reaches zero), the 10 % and 1 % lines and a dt^2 guide.
 fn error_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
     results: &SweepResults,
-    title: &str,
-    f: Column,
+    panel: &Panel,
 ) -> Result<(), Error>
 where
     DB::ErrorType: 'static,
 {
-    let series: Vec<(&str, Vec<(f64, f64)>)> = results
+    let context = Context {
+        kbt: results.scene.physics.kbt,
+        baseline: results.baseline.as_ref(),
+    };
+    let series: Vec<(&str, Vec<ErrorPoint>)> = results
         .summary
         .iter()
         .map(|s| {
@@ -96,27 +182,37 @@ where
                 .rows
                 .iter()
                 .filter(|r| r.scheme == s.scheme && r.stable)
-                .filter_map(|r| Some((r.dt, f(r)?.abs())))
-                .filter(|&(_, e)| e > 0.0 && e.is_finite())
+                .filter_map(|r| Some((r.dt, (panel.error)(r)?, (panel.stderr)(r, &context))))
+                .filter(|&(_, e, _)| e != 0.0 && e.is_finite())
                 .collect();
             (s.scheme.as_str(), pts)
         })
         .collect();
     let w = results.scene.sweep_spec();
     let (x0, x1) = (w.dt_min / 1.1, w.dt_max * 1.1);
-    let all = series.iter().flat_map(|(_, p)| p.iter().map(|&(_, e)| e));
+    let all = series
+        .iter()
+        .flat_map(|(_, p)| p.iter().map(|&(_, e, _)| e.abs()));
     let (lo, hi) = all.fold((0.005f64, 0.2f64), |(lo, hi), e| (lo.min(e), hi.max(e)));
     let (y0, y1) = (lo / 2.0, (hi * 2.0).min(1e3));
     let mut chart = ChartBuilder::on(area)
-        .caption(title, ("sans-serif", 20))
+        .caption(
+            format!("{} (hollow: error < 0)", panel.title),
+            ("sans-serif", 20),
+        )
         .margin(10)
         .x_label_area_size(40)
         .y_label_area_size(60)
-        .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
+        .build_cartesian_2d(
+            (x0..x1).log_scale().with_key_points(log_ticks(x0, x1)),
+            (y0..y1).log_scale().with_key_points(log_ticks(y0, y1)),
+        )?;
     chart
         .configure_mesh()
         .x_desc("dt")
         .y_desc("relative error")
+        .x_label_formatter(&|x| format!("{x}"))
+        .y_label_formatter(&|y| format!("{y}"))
         .draw()?;
     // Second-order guide through 10 % at the geometric middle of the dt range.
     let mid = (x0 * x1).sqrt();
@@ -136,11 +232,31 @@ where
     }
     for (k, (name, pts)) in series.iter().enumerate() {
         let colour = COLOURS[k % COLOURS.len()];
+        let at = |&(dt, e, _): &ErrorPoint| (dt, e.abs());
         chart
-            .draw_series(LineSeries::new(pts.iter().copied(), colour.stroke_width(2)))?
+            .draw_series(LineSeries::new(pts.iter().map(at), colour.stroke_width(2)))?
             .label(*name)
             .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], colour));
-        chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, colour.filled())))?;
+        chart.draw_series(pts.iter().filter_map(|&(dt, e, s)| {
+            let s = s.filter(|s| s.is_finite())?;
+            let (low, high) = ((e.abs() - s).max(y0), (e.abs() + s).min(y1));
+            Some(PathElement::new(
+                [(dt, low), (dt, high)],
+                colour.stroke_width(1),
+            ))
+        }))?;
+        chart.draw_series(pts.iter().map(|p| {
+            let style = match p.1 > 0.0 {
+                true => colour.filled(),
+                false => WHITE.filled(),
+            };
+            Circle::new(at(p), 4, style)
+        }))?;
+        chart.draw_series(
+            pts.iter()
+                .filter(|p| p.1 < 0.0)
+                .map(|p| Circle::new(at(p), 4, colour.stroke_width(2))),
+        )?;
     }
     legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
     Ok(())
@@ -290,4 +406,33 @@ pub fn profile_plot(rows: &[ProfileRow], axis: usize, path: &Path) -> Result<(),
     }
     root.present()?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn log_ticks_label_the_range_of_the_data() {
+        // The main job's dt axis: 0.02 / 1.1 to 0.2 x 1.1.
+        assert_eq!(
+            log_ticks(0.0182, 0.22),
+            vec![0.02, 0.03, 0.05, 0.07, 0.1, 0.15, 0.2]
+        );
+        assert_eq!(log_ticks(0.001, 1.0).len(), 10);
+    }
+
+    #[test]
+    fn an_error_against_the_baseline_adds_both_standard_errors() {
+        let s = against_baseline(Some(2.0), Some(0.3), Some(-4.0), Some(0.4)).unwrap();
+        assert!((s - 0.125).abs() < 1e-15);
+        assert_eq!(
+            against_baseline(Some(2.0), None, Some(4.0), Some(0.4)),
+            None
+        );
+        assert_eq!(
+            against_baseline(Some(2.0), Some(0.3), Some(4.0), None),
+            Some(0.075)
+        );
+    }
 }
