@@ -107,7 +107,14 @@ fn log_ticks(lo: f64, hi: f64) -> Vec<f64> {
     };
     let (first, last) = (lo.log10().floor() as i32, hi.log10().ceil() as i32);
     (first..=last)
-        .flat_map(|e| mantissas.iter().map(move |m| m * 10f64.powi(e)))
+        // Divided for negative exponents, so that 1.5 / 10 is the double nearest 0.15, as its
+        // label prints it.
+        .flat_map(|e| {
+            mantissas.iter().map(move |m| match e < 0 {
+                true => m / 10f64.powi(-e),
+                false => m * 10f64.powi(e),
+            })
+        })
         .filter(|&t| t >= lo && t <= hi)
         .collect()
 }

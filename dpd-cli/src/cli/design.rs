@@ -4,7 +4,7 @@
 //! measured one.
 
 use super::predict::{spectrum_of, SpectrumArgs};
-use super::scene_flags::{SceneFlags, SweepFlags};
+use super::scene_flags::{SceneFlags, SchemeList, SweepFlags};
 use super::{bad_input, print_json, sweep};
 use dpd::design::{design, Design, Member, Objective};
 use dpd::lang::compile_family;
@@ -220,7 +220,7 @@ fn measure(d: &Design, args: &Args) -> ExitCode {
     let mut schemes: Vec<String> = chosen.iter().map(|m| m.program.clone()).collect();
     schemes.push(REFERENCE.to_string());
     let sweep_keys = SweepFlags {
-        schemes: Some(schemes.clone()),
+        schemes: Some(SchemeList(schemes.clone())),
         reference: Some(REFERENCE.to_string()),
         ..Default::default()
     };

@@ -77,9 +77,9 @@ pub struct SceneFlags {
 pub struct SweepFlags {
     /// Schemes to compare, comma-separated registry names or scheme strings (commas inside
     /// brackets or parentheses, as in `prk(b = [...], ...)`, belong to the scheme)
-    #[arg(long, value_parser = split_schemes, value_name = "SCHEMES")]
+    #[arg(long, value_parser = scheme_list)]
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub schemes: Option<Vec<String>>,
+    pub schemes: Option<SchemeList>,
     /// Smallest time step of the grid
     #[arg(long, allow_negative_numbers = true)]
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -101,6 +101,15 @@ pub struct SweepFlags {
     #[arg(long, value_parser = observable_names())]
     #[serde(skip_serializing_if = "Option::is_none")]
     pub observable: Option<String>,
+}
+
+/// The schemes of `--schemes`: one value for clap (a `Vec` would be many), a list in the scene.
+#[derive(Clone, Debug, Serialize)]
+#[serde(transparent)]
+pub struct SchemeList(pub Vec<String>);
+
+fn scheme_list(text: &str) -> Result<SchemeList, String> {
+    split_schemes(text).map(SchemeList)
 }
 
 fn observable_names() -> clap::builder::PossibleValuesParser {
