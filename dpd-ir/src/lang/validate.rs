@@ -73,8 +73,12 @@ fn has_drift(apps: &[Application], whole: &Span) -> Option<Diagnostic> {
 fn has_conservative_force(apps: &[Application], whole: &Span) -> Option<Diagnostic> {
     let pair = Kick::Group(ForceGroup::Pair);
     (!apps.iter().any(|a| pair.advanced_by(a.flow, a.group))).then(|| {
+        let bond_only = match apps.iter().any(|a| a.group == Some(ForceGroup::Bond)) {
+            true => " (B[bond] applies the bonded forces only)",
+            false => "",
+        };
         Diagnostic::new(
-            "scheme has no conservative force: it needs a B, T or F (B[bond] alone applies the bonded forces only)",
+            format!("scheme has no conservative force: it needs a B, T or F{bond_only}"),
             whole.clone(),
         )
     })
