@@ -336,13 +336,17 @@ impl Parser<'_> {
     /// Whether the next token opens a parenthesis of steps (a repetition) rather than of
     /// coefficients: after any further `(`, a step starts with an uppercase name or `prk`,
     /// which no coefficient expression does. So `A (B A B)^2` is `A` followed by a
-    /// repetition, while `A((1/2))` is `A` with one coefficient.
+    /// repetition, while `A((1/2))` is `A` with one coefficient, and `A(NaN)` a coefficient
+    /// that is refused as not finite.
     fn opens_steps(&self) -> bool {
         let mut k = self.pos;
         while matches!(self.tokens.get(k), Some(t) if t.tok == Tok::Punct('(')) {
             k += 1;
         }
-        k > self.pos && self.tokens.get(k).is_some_and(|t| is_step_start(&t.tok))
+        k > self.pos
+            && self.tokens.get(k).is_some_and(|t| {
+                is_step_start(&t.tok) && not_finite(self.src, t.span.start).is_none()
+            })
     }
 
     /// `( steps )^count`, the `(` next.
