@@ -70,11 +70,25 @@ impl InitSpec {
     }
 }
 
-/// Positions, momenta, masses (`mass` where the file has none) and types of `f` for a system
-/// of `types` particle types.
+/// Positions, momenta, masses and types of a frame.
 pub type InitialState = (Vec<Vec3>, Vec<Vec3>, Vec<f64>, Vec<u16>);
 
-pub fn initial_state(f: &Frame, mass: f64, types: usize) -> Result<InitialState, ParamError> {
+/// The state of `f` for a scene whose types have masses `type_masses` (a particle's mass where
+/// the file has none) and names `names` (empty: a scene without species, whose types the
+/// frame's type ids only need to fit).
+pub fn initial_state(
+    f: &Frame,
+    type_masses: &[f64],
+    names: &[String],
+) -> Result<InitialState, ParamError> {
+    let types = type_masses.len();
+    if !names.is_empty() && f.types != names {
+        return Err(ParamError::new(
+            "init: types",
+            format!("{:?}", f.types),
+            format!("must be the scene's species, {names:?}, in their order"),
+        ));
+    }
     if let Some(i) = f.typeid.iter().position(|&t| t as usize >= types) {
         return Err(ParamError::new(
             format!("init: typeid of particle {i}"),
@@ -86,7 +100,10 @@ pub fn initial_state(f: &Frame, mass: f64, types: usize) -> Result<InitialState,
         ));
     }
     let to = |v: &[f64; 3]| Vec3::new(v[0], v[1], v[2]);
-    let masses = f.masses.clone().unwrap_or_else(|| vec![mass; f.len()]);
+    let masses = match &f.masses {
+        Some(m) => m.clone(),
+        None => f.typeid.iter().map(|&t| type_masses[t as usize]).collect(),
+    };
     let q = f.positions.iter().map(to).collect();
     let p = match &f.velocities {
         Some(v) => v.iter().zip(&masses).map(|(v, m)| to(v) * *m).collect(),
