@@ -277,7 +277,8 @@ fn outputs() -> BTreeMap<&'static str, Vec<Value>> {
         d,
         "mixture.toml",
         &format!(
-            "{tiny}[[species]]\nname = \"A\"\nfraction = 0.5\nmass = 2.0\n[[species]]\n\
+            "{tiny}like_neighbours = true\n[rdf]\nr_max = 1.5\nbins = 5\n[profile]\nbins = 2\n\
+             [[species]]\nname = \"A\"\nfraction = 0.5\nmass = 2.0\n[[species]]\n\
              name = \"B\"\nfraction = 0.5\n[pairs]\nA-A = {{ a = 25.0 }}\n\
              B-B = {{ a = 25.0 }}\nA-B = {{ a = 40.0 }}\n"
         ),

@@ -6,13 +6,17 @@
 //! |---|---|---|
 //! | `thermo.rs` | T_K, T_C, U, P averaged over the window | always |
 //! | `rdf.rs` | g(r) | `[rdf]` |
+//! | `pair_rdf.rs` | g(r) of each pair of species | `[rdf]` with `[[species]]` |
+//! | `neighbours.rs` | the fraction of like neighbours of each species | `like_neighbours` |
 //! | `vacf.rs` | the diffusion coefficient | `[vacf]` |
 //! | `viscosity.rs` | the shear viscosity | a non-zero `shear_rate` |
 //! | `profile.rs` | slab profiles | `[profile]` |
+//! | `species_profile.rs` | slab densities of each species | `[profile]` with `[[species]]` |
 //! | `trajectory.rs` | frames into a file | `[trajectory]` |
 //! | `energy.rs` | heat and shadow work | `energy_balance` |
 //!
-//! The interface, [`Observer`] and what it is given, is in `interface.rs`. To add an
+//! The interface, [`Observer`] and what it is given, is in `interface.rs`; `typed.rs` visits
+//! the pairs of a state with their particles' types. To add an
 //! observable: write its file with a type implementing [`Observer`] and a `new`
 //! that returns `None` when the scene does not ask for it (its key belongs to a scene section,
 //! usually `crate::scene::observe`), list `new` in [`for_run`], and give [`RunResult`] the
@@ -25,10 +29,14 @@
 
 mod energy;
 mod interface;
+mod neighbours;
+mod pair_rdf;
 mod profile;
 mod rdf;
+mod species_profile;
 mod thermo;
 mod trajectory;
+mod typed;
 mod vacf;
 mod viscosity;
 
@@ -41,12 +49,15 @@ type Make = for<'a> fn(&Setup<'a>, &mut System) -> Result<Option<Boxed<'a>>, Par
 
 /// The observers of a run, in the order they are called.
 pub fn for_run<'a>(setup: &Setup<'a>, sys: &mut System) -> Result<Vec<Boxed<'a>>, ParamError> {
-    const MAKE: [Make; 7] = [
+    const MAKE: [Make; 10] = [
         thermo::new,
         rdf::new,
+        pair_rdf::new,
+        neighbours::new,
         vacf::new,
         viscosity::new,
         profile::new,
+        species_profile::new,
         trajectory::new,
         energy::new,
     ];

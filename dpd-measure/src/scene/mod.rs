@@ -12,7 +12,7 @@
 //! | [`Physics`] | `physics.rs` | `a`, `gamma`, `kbt`, `mass`, `weight_exponent`, `shear_rate`, `body_force` |
 //! | [`Species`] | `species.rs` | `[[species]]`, `[pairs]` |
 //! | [`Geometry`] | `geometry.rs` | `n`, `density`, `box`, `skin`, `init`, `[walls]` |
-//! | [`Observe`] | `observe.rs` | `[rdf]`, `[vacf]`, `[profile]`, `energy_balance` |
+//! | [`Observe`] | `observe.rs` | `[rdf]`, `[vacf]`, `[profile]`, `energy_balance`, `like_neighbours` |
 //! | [`Output`] | `output.rs` | `description`, `[trajectory]` |
 //! | [`SweepSpec`] | `sweep.rs` | `[sweep]` |
 //!
@@ -152,6 +152,12 @@ impl Scene {
         let particles = self.geometry.particles();
         self.species
             .validate(particles, self.physics.a, default_a)?;
+        check::require(
+            "like_neighbours",
+            true,
+            !self.observe.like_neighbours || self.species.species.is_some(),
+            "needs [[species]] (with one species every neighbour is like)",
+        )?;
         self.observe.validate(self.geometry.shortest_edge()?)?;
         self.output.validate()?;
         if let Some(w) = &self.sweep {
