@@ -109,3 +109,47 @@ fn a_bad_scheme_string_is_shown_once_with_a_caret_and_escaped() {
         assert!(!stderr.contains('\u{1b}') && !stderr.contains("registered"));
     }
 }
+
+/// A run's last state written as a LAMMPS data file starts the next run; a data file LAMMPS
+/// would refuse is refused with its line, and one whose pair coefficients the engine cannot
+/// hold names the pair.
+#[test]
+fn a_data_file_written_by_a_run_starts_the_next() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = write(dir.path(), "tiny.toml", TINY);
+    let first = [
+        "run",
+        "--scene",
+        &scene,
+        "--write-data",
+        "end.data",
+        "--json",
+    ];
+    json(&dpd(dir.path(), &first));
+    let text = std::fs::read_to_string(dir.path().join("end.data")).unwrap();
+    assert!(
+        text.contains("\n100 atoms\n") && text.contains("PairIJ Coeffs # dpd\n\n1 1 25 4.5 1\n")
+    );
+    let next = ["run", "--scene", &scene, "--init", "end.data", "--json"];
+    let v = json(&dpd(dir.path(), &next));
+    assert_eq!(v["stable"], true);
+    let bad = write(
+        dir.path(),
+        "bad.data",
+        &text.replace("1 1 25 4.5 1", "1 1 25 x 1"),
+    );
+    let out = dpd(dir.path(), &["run", "--scene", &scene, "--init", &bad]);
+    refused(&out, "line 15: `x` is not a finite number");
+    let hot = write(
+        dir.path(),
+        "hot.data",
+        &text.replace("1 1 25 4.5 1", "1 1 25 9 1"),
+    );
+    let out = dpd(dir.path(), &["run", "--scene", &scene, "--init", &hot]);
+    refused(&out, "invalid init: Pair Coeffs 1 1 = gamma 9");
+    let out = dpd(
+        dir.path(),
+        &["run", "--scene", &scene, "--write-data", "end.gsd"],
+    );
+    refused(&out, "write_data");
+}

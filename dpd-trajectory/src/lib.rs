@@ -12,6 +12,7 @@
 //! is a short documented binary format, so [`gsd`] writes and reads it directly.
 
 pub mod gsd;
+pub mod lammps_data;
 mod text;
 
 use std::path::{Path, PathBuf};

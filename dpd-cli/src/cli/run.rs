@@ -26,9 +26,14 @@ pub struct Args {
     /// Time between trajectory frames (with --trajectory)
     #[arg(long, value_name = "T", requires = "trajectory")]
     every: Option<f64>,
-    /// Start from a frame of a GSD file: FILE.gsd (its last frame) or FILE.gsd:K
-    #[arg(long, value_name = "FILE.gsd[:K]")]
+    /// Start from a frame of a GSD file, FILE.gsd (its last frame) or FILE.gsd:K, or from a
+    /// LAMMPS data file, FILE.data
+    #[arg(long, value_name = "FILE.gsd[:K]|FILE.data")]
     init: Option<String>,
+    /// Write each run's last state as a LAMMPS data file (FILE.data); replaces the scene's
+    /// write_data
+    #[arg(long, value_name = "FILE.data")]
+    write_data: Option<PathBuf>,
 }
 
 /// What `dpd run --json` prints: the combined observables of the runs, their details and the
@@ -117,13 +122,16 @@ pub fn main(args: Args) -> ExitCode {
     }
 }
 
-/// `scene` with `--trajectory`/`--every` and `--init` applied, validated.
+/// `scene` with `--trajectory`/`--every`, `--init` and `--write-data` applied, validated.
 fn with_files(mut scene: Scene, args: &Args) -> Result<Scene, SceneError> {
     if let (Some(file), Some(every)) = (&args.trajectory, args.every) {
         scene.output.trajectory = Some(TrajectorySpec::new(file.clone(), every));
     }
     if let Some(init) = &args.init {
         scene.geometry.init = Some(init.clone());
+    }
+    if let Some(file) = &args.write_data {
+        scene.output.write_data = Some(file.clone());
     }
     scene.validate()?;
     Ok(scene)

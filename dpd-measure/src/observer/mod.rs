@@ -13,6 +13,7 @@
 //! | `profile.rs` | slab profiles | `[profile]` |
 //! | `species_profile.rs` | slab densities of each species | `[profile]` with `[[species]]` |
 //! | `trajectory.rs` | frames into a file | `[trajectory]` |
+//! | `data_out.rs` | the last state into a LAMMPS data file | `write_data` |
 //! | `energy.rs` | heat and shadow work | `energy_balance` |
 //!
 //! The interface, [`Observer`] and what it is given, is in `interface.rs`; `typed.rs` visits
@@ -27,6 +28,7 @@
 //! step, in the averaging window (the last `average_fraction` of the run); observers are
 //! called in the order of [`for_run`].
 
+mod data_out;
 mod energy;
 mod interface;
 mod neighbours;
@@ -49,7 +51,7 @@ type Make = for<'a> fn(&Setup<'a>, &mut System) -> Result<Option<Boxed<'a>>, Par
 
 /// The observers of a run, in the order they are called.
 pub fn for_run<'a>(setup: &Setup<'a>, sys: &mut System) -> Result<Vec<Boxed<'a>>, ParamError> {
-    const MAKE: [Make; 10] = [
+    const MAKE: [Make; 11] = [
         thermo::new,
         rdf::new,
         pair_rdf::new,
@@ -59,6 +61,7 @@ pub fn for_run<'a>(setup: &Setup<'a>, sys: &mut System) -> Result<Vec<Boxed<'a>>
         profile::new,
         species_profile::new,
         trajectory::new,
+        data_out::new,
         energy::new,
     ];
     let mut observers = Vec::new();

@@ -1,6 +1,7 @@
 //! The system of a scene: its sections put together into a `dpd_core::System`.
 
 use super::Scene;
+use crate::data_file::same_repulsions;
 use crate::start::{initial_state, InitSpec};
 use dpd_core::init::{freeze_outside, maxwell_momenta, uniform_positions};
 use dpd_core::{ParamError, Params, System, Vec3};
@@ -8,18 +9,32 @@ use dpd_core::{ParamError, Params, System, Vec3};
 impl Scene {
     /// The initial state of run `seed` at time step `dt`: uniform positions, types by id in
     /// the order of `[[species]]`, Maxwell momenta with the total momentum removed (with
-    /// `init`, the frame's positions, velocities, masses and types instead); with `[walls]`,
+    /// `init`, the frame's positions, velocities, masses and types instead, and a data file's
+    /// pair coefficients); with `[walls]`,
     /// the particles outside the channel are frozen (and their momenta zeroed).
     pub fn system(&self, dt: f64, seed: u64) -> Result<System, ParamError> {
         let (geometry, physics) = (&self.geometry, &self.physics);
         let bx = geometry.periodic_box()?;
         let n = geometry.particles();
-        let params = self.params()?;
         let type_masses = self.type_masses();
-        let (q, mut p, masses, kinds) = match &geometry.init {
+        let names = self.species.names();
+        let (state, params) = match &geometry.init {
             Some(init) => {
-                let frame = InitSpec::parse(init)?.read(n, bx.lengths().into())?;
-                initial_state(&frame, &type_masses, &self.species.names())?
+                let lengths = bx.lengths().into();
+                let start = InitSpec::parse(init)?.read(n, lengths, &names, physics.gamma)?;
+                let params = match (start.repulsions, &self.species.species) {
+                    (Some(a), None) => physics.builder().a_matrix(a).build()?,
+                    (Some(a), Some(_)) => {
+                        same_repulsions(&a, &self.species.a_matrix()?, &names)?;
+                        self.params()?
+                    }
+                    (None, _) => self.params()?,
+                };
+                // A data file's pair coefficients may bring types a scene without species
+                // lacks: their particles take the scene's mass where the file has none.
+                let mut masses = type_masses;
+                masses.resize(params.types(), physics.mass);
+                (initial_state(&start.frame, &masses)?, params)
             }
             None => {
                 let kinds = match self.species.species {
@@ -29,9 +44,10 @@ impl Scene {
                 let masses: Vec<f64> = kinds.iter().map(|&t| type_masses[t as usize]).collect();
                 let q = uniform_positions(&bx, n, seed);
                 let p = maxwell_momenta(&masses, physics.kbt, seed);
-                (q, p, masses, kinds)
+                ((q, p, masses, kinds), self.params()?)
             }
         };
+        let (q, mut p, masses, kinds) = state;
         let mut builder = System::builder(params, bx, q.clone())
             .masses(masses)
             .kinds(kinds)

@@ -13,7 +13,7 @@
 //! | [`Species`] | `species.rs` | `[[species]]`, `[pairs]` |
 //! | [`Geometry`] | `geometry.rs` | `n`, `density`, `box`, `skin`, `init`, `[walls]` |
 //! | [`Observe`] | `observe.rs` | `[rdf]`, `[vacf]`, `[profile]`, `energy_balance`, `like_neighbours` |
-//! | [`Output`] | `output.rs` | `description`, `[trajectory]` |
+//! | [`Output`] | `output.rs` | `description`, `[trajectory]`, `write_data` |
 //! | [`SweepSpec`] | `sweep.rs` | `[sweep]` |
 //!
 //! Each section takes its keys out of the parsed table ([`section::take`]); a key no section
