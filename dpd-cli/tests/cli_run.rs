@@ -153,3 +153,29 @@ fn a_data_file_written_by_a_run_starts_the_next() {
     );
     refused(&out, "write_data");
 }
+
+/// A mixture's run prints each species' like-neighbour fraction and writes its species
+/// profile as CSV, one column per species.
+#[test]
+fn a_mixture_prints_its_like_neighbours_and_writes_its_species_profile() {
+    let dir = tempfile::tempdir().unwrap();
+    let mixture = format!(
+        "{TINY}like_neighbours = true\n[profile]\nbins = 3\n[[species]]\nname = \"A\"\n\
+         fraction = 0.5\n[[species]]\nname = \"W\"\nfraction = 0.5\n[pairs]\n\
+         A-A = {{ a = 25.0 }}\nW-W = {{ a = 25.0 }}\nA-W = {{ a = 40.0 }}\n"
+    );
+    let scene = write(dir.path(), "mixture.toml", &mixture);
+    let out = dpd(
+        dir.path(),
+        &["run", "--scene", &scene, "--profile-dir", "p"],
+    );
+    assert!(out.status.success(), "{out:?}");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("seed 1: like neighbours within r_c: A 0."),
+        "{text}"
+    );
+    let csv = std::fs::read_to_string(dir.path().join("p/species-profile-seed1.csv")).unwrap();
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!((lines[0], lines.len()), ("z,A,W", 4), "{csv}");
+}
