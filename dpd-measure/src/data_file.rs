@@ -51,6 +51,7 @@ pub fn frame_of(data: &DataFile) -> Result<Frame, String> {
         types: (1..=data.atom_types).map(|t| t.to_string()).collect(),
         masses,
         log: Vec::new(),
+        bonds: None,
     })
 }
 

@@ -174,6 +174,7 @@ fn frame(sys: &mut System, fields: &[Field], types: &[String]) -> Frame {
         types: types.to_vec(),
         masses: fields.contains(&Field::Mass).then_some(mass),
         log,
+        bonds: None,
     }
 }
 
