@@ -139,7 +139,7 @@ fn a_data_file_written_by_a_run_starts_the_next() {
         &text.replace("1 1 25 4.5 1", "1 1 25 x 1"),
     );
     let out = dpd(dir.path(), &["run", "--scene", &scene, "--init", &bad]);
-    refused(&out, "line 15: `x` is not a finite number");
+    refused(&out, "line 19: `x` is not a finite number");
     let hot = write(
         dir.path(),
         "hot.data",

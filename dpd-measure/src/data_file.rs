@@ -9,8 +9,8 @@ use dpd_trajectory::Frame;
 use std::collections::BTreeMap;
 
 /// The particles of a data file as a frame: in the order of their atom ids, positions less
-/// the box's lower corner wrapped into `[0, L)`, type ids from 0, masses from `Masses` (none
-/// when it gives none).
+/// the box's lower corner wrapped into `[0, L)`, type ids from 0 named by the `Atom Type
+/// Labels` (else "1", "2", ...), masses from `Masses` (none when it gives none).
 pub fn frame_of(data: &DataFile) -> Result<Frame, String> {
     if !data.bonds.is_empty() || !data.angles.is_empty() {
         return Err(format!(
@@ -48,7 +48,10 @@ pub fn frame_of(data: &DataFile) -> Result<Frame, String> {
         velocities,
         images: Some(atoms.iter().map(|a| a.image).collect()),
         typeid: atoms.iter().map(|a| a.kind - 1).collect(),
-        types: (1..=data.atom_types).map(|t| t.to_string()).collect(),
+        types: match &data.type_labels {
+            Some(labels) => labels.clone(),
+            None => (1..=data.atom_types).map(|t| t.to_string()).collect(),
+        },
         masses,
         log: Vec::new(),
         bonds: None,
@@ -139,10 +142,10 @@ pub fn same_repulsions(
 }
 
 /// The state of `sys` as a data file of atom style atomic, particles by id (atom id = id + 1),
-/// positions in `[0, L)`, with `Masses` (each type's mass; the error names a type whose
-/// particles differ in mass), `Velocities` and the `pair_style dpd` coefficients of every
-/// pair of types.
-pub fn data_of(sys: &System, title: &str) -> Result<DataFile, String> {
+/// positions in `[0, L)`, with the type names `names` as `Atom Type Labels`, `Masses` (each
+/// type's mass; the error names a type whose particles differ in mass), `Velocities` and the
+/// `pair_style dpd` coefficients of every pair of types.
+pub fn data_of(sys: &System, names: &[String], title: &str) -> Result<DataFile, String> {
     let params = sys.params();
     let types = params.types();
     let mut masses = vec![None; types];
@@ -190,6 +193,7 @@ pub fn data_of(sys: &System, title: &str) -> Result<DataFile, String> {
         angle_types: 0,
         atom_style: AtomStyle::Atomic,
         masses,
+        type_labels: Some(names.to_vec()),
         atoms,
         bonds: Vec::new(),
         angles: Vec::new(),
@@ -221,7 +225,10 @@ mod tests {
         sys.advance(aboba.as_ref(), 20).unwrap();
         let dir = tempfile::tempdir().unwrap();
         let file = dir.path().join("s.data");
-        data_of(&sys, "t").unwrap().write(&file).unwrap();
+        data_of(&sys, &scene.type_names(2), "t")
+            .unwrap()
+            .write(&file)
+            .unwrap();
         let init = format!("n = 120\ninit = {:?}\n", file.display().to_string());
         let again = Scene::from_toml(&init, "t").unwrap();
         again.validate().unwrap();
@@ -256,7 +263,7 @@ mod tests {
     #[test]
     fn pair_coefficients_the_engine_cannot_hold_are_named() {
         let scene = Scene::from_toml(MIXTURE, "t").unwrap();
-        let data = data_of(&scene.system(0.05, 3).unwrap(), "t").unwrap();
+        let data = data_of(&scene.system(0.05, 3).unwrap(), &scene.type_names(2), "t").unwrap();
         let with = |pair: (u32, u32), c: Vec<f64>| {
             let mut d = data.clone();
             d.pair_coeffs.by_type.insert(pair, c);
@@ -286,5 +293,10 @@ mod tests {
             e.contains("Pair Coeffs 1 2 = A 40: must be the scene's a of A-B = 41"),
             "{e}"
         );
+        let mut renamed = data.clone();
+        renamed.type_labels = Some(vec!["A".into(), "C".into()]);
+        renamed.write(&file).unwrap();
+        let e = own.system(0.05, 3).unwrap_err().to_string();
+        assert!(e.contains("Atom Type Labels [\"A\", \"C\"] are not"), "{e}");
     }
 }

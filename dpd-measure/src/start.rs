@@ -76,6 +76,14 @@ impl InitSpec {
                         names.len()
                     )));
                 }
+                if let Some(labels) = data.type_labels.as_ref().filter(|_| !names.is_empty()) {
+                    if labels != names {
+                        return Err(bad(format!(
+                            "its Atom Type Labels {labels:?} are not the scene's species \
+                             {names:?} in their order"
+                        )));
+                    }
+                }
                 ("the file".to_string(), Start { frame, repulsions })
             }
             _ => {

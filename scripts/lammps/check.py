@@ -691,8 +691,8 @@ def data_files(args):
     atom, temperature and pressure that `dpd run --init` logs for that state, to 1e-9
     relative (the same sums in another order); the pressures once LAMMPS's kinetic term
     2 KE / 3V is replaced by dpd's N k_B T_K / V. LAMMPS's write_data of the state (its own
-    atom order, the friction 0 of the pair coefficients above) starts dpd run in the same
-    state."""
+    atom order, the friction 0 of the pair coefficients above, the species' names as type
+    labels, which dpd run checks) starts dpd run in the same state."""
     scene = os.path.join(args.work, "mixture.toml")
     with open(scene, "w") as f:
         f.write("box = [6.0, 6.0, 6.0]\ntime = 1.0\n[[species]]\nname = \"A\"\nfraction = 0.5\n"

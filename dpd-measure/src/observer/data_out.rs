@@ -12,6 +12,8 @@ struct DataOut {
     path: PathBuf,
     steps: u64,
     title: String,
+    /// The type names.
+    names: Vec<String>,
 }
 
 pub(super) fn new<'a>(
@@ -38,6 +40,7 @@ pub(super) fn new<'a>(
         path,
         steps: setup.steps,
         title: title.replace('#', ""),
+        names: setup.scene.type_names(sys.params().types()),
     })))
 }
 
@@ -51,7 +54,7 @@ impl Observer for DataOut {
             return Ok(());
         }
         let bad = |e: String| ParamError::new("write_data", self.path.display(), e);
-        let data = data_of(sys, &self.title).map_err(bad)?;
+        let data = data_of(sys, &self.names, &self.title).map_err(bad)?;
         data.write(&self.path).map_err(|e| bad(e.to_string()))
     }
 

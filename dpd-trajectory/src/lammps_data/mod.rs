@@ -1,4 +1,5 @@
-//! LAMMPS data files (`read_data` / `write_data`): the header counts and box, `Masses`,
+//! LAMMPS data files (`read_data` / `write_data`): the header counts and box, `Atom Type
+//! Labels`, `Masses`,
 //! `Atoms` in the atom styles atomic, bond, molecular and full, `Velocities`, `Bonds`,
 //! `Angles`, and the coefficient sections `Pair Coeffs`, `PairIJ Coeffs`, `Bond Coeffs`,
 //! `Angle Coeffs` as numbers with the style their comment names (`Pair Coeffs # dpd`). What
@@ -112,6 +113,8 @@ pub struct DataFile {
     pub atom_style: AtomStyle,
     /// Mass of each atom type (index type - 1), `None` where `Masses` gives none.
     pub masses: Vec<Option<f64>>,
+    /// Name of each atom type (`Atom Type Labels`), or `None` without that section.
+    pub type_labels: Option<Vec<String>>,
     /// In the order of the file.
     pub atoms: Vec<Atom>,
     pub bonds: Vec<Topology<2>>,
@@ -123,7 +126,8 @@ pub struct DataFile {
 }
 
 /// The sections this reader knows.
-const SECTIONS: [&str; 9] = [
+const SECTIONS: [&str; 10] = [
+    "Atom Type Labels",
     "Masses",
     "Atoms",
     "Velocities",
@@ -177,6 +181,7 @@ impl DataFile {
             angle_types: 0,
             atom_style: AtomStyle::Atomic,
             masses: Vec::new(),
+            type_labels: None,
             atoms: Vec::new(),
             bonds: Vec::new(),
             angles: Vec::new(),
@@ -246,6 +251,12 @@ impl DataFile {
         }
         for (b, axis) in self.bounds.iter().zip(["x", "y", "z"]) {
             w(format!("{} {} {axis}lo {axis}hi", b[0], b[1]));
+        }
+        if let Some(labels) = &self.type_labels {
+            w("\nAtom Type Labels\n".into());
+            for (t, label) in labels.iter().enumerate() {
+                w(format!("{} {label}", t + 1));
+            }
         }
         if self.masses.iter().any(Option::is_some) {
             w("\nMasses\n".into());
@@ -318,6 +329,21 @@ impl DataFile {
     fn section(&mut self, name: &str, comment: &str, body: &[Line]) -> Result<(), String> {
         let style = (!comment.is_empty()).then(|| comment.to_string());
         match name {
+            "Atom Type Labels" => {
+                let mut labels = vec![String::new(); self.atom_types as usize];
+                for l in body {
+                    let t = type_in(l, 0, self.atom_types, "atom")?;
+                    let words: Vec<&str> = l.text.split_whitespace().collect();
+                    if words.len() != 2 || words[1].starts_with(|c: char| c.is_ascii_digit()) {
+                        return Err(at(
+                            l,
+                            "a type label line is `type label`, the label not a number",
+                        ));
+                    }
+                    labels[t as usize - 1] = words[1].to_string();
+                }
+                self.type_labels = Some(labels);
+            }
             "Masses" => {
                 for l in body {
                     let (t, v) = (type_in(l, 0, self.atom_types, "atom")?, floats(l, 1..)?);
@@ -575,7 +601,7 @@ impl Header {
             "Atoms" | "Velocities" => self.atoms,
             "Bonds" => self.bonds,
             "Angles" => self.angles,
-            "Masses" | "Pair Coeffs" => file.atom_types as usize,
+            "Atom Type Labels" | "Masses" | "Pair Coeffs" => file.atom_types as usize,
             "PairIJ Coeffs" => {
                 let t = file.atom_types as usize;
                 t * (t + 1) / 2

@@ -16,6 +16,11 @@ const FULL: &str = "LAMMPS data file via write_data, version 2 Aug 2023, timeste
 0 5 ylo yhi
 0 6.25 zlo zhi
 
+Atom Type Labels
+
+1 A
+2 Wall
+
 Masses
 
 1 1
@@ -64,6 +69,10 @@ fn a_full_file_is_read_as_written() {
     assert_eq!((f.atom_types, f.bond_types, f.angle_types), (2, 1, 1));
     assert_eq!(f.atom_style, AtomStyle::Full);
     assert_eq!(f.masses, [Some(1.0), Some(2.5)]);
+    assert_eq!(
+        f.type_labels,
+        Some(vec!["A".to_string(), "Wall".to_string()])
+    );
     assert_eq!(f.atoms.len(), 3);
     let a = &f.atoms[1];
     assert_eq!(
@@ -148,17 +157,17 @@ fn malformed_files_name_the_section_and_line() {
         (
             "2 2.5\n",
             "3 2.5\n",
-            "line 17: atom type 3 is not in 1 to 2",
+            "line 22: atom type 3 is not in 1 to 2",
         ),
         (
             "2 2 25 4.5\n",
             "2 2 25 x\n",
-            "line 23: `x` is not a finite number",
+            "line 28: `x` is not a finite number",
         ),
         (
             "1 1 1 0 -2",
             "1 1 1 0 -2 9",
-            "line 35: 11 columns; atom style full has 7",
+            "line 40: 11 columns; atom style full has 7",
         ),
         (
             "2 1 2 3\n",
@@ -178,7 +187,7 @@ fn malformed_files_name_the_section_and_line() {
         (
             "3 0.1 0.2 0.3\n",
             "",
-            "section `Velocities` (line 39): 2 lines, the header asks for 3",
+            "section `Velocities` (line 44): 2 lines, the header asks for 3",
         ),
         (
             "Atoms # full",
@@ -188,7 +197,7 @@ fn malformed_files_name_the_section_and_line() {
         (
             "1 4 0\n",
             "2 4 0\n",
-            "line 27: bond type 2 is not in 1 to 1",
+            "line 32: bond type 2 is not in 1 to 1",
         ),
         (
             "3 1 2 0.5",
