@@ -42,14 +42,22 @@ pub(crate) fn add_conservative(ends: Ends, fi: &mut Vec3, fj: &mut Vec3) {
 /// the pair virial of the dissipative and random parts when `V` is [`crate::Tensor`].
 #[inline(always)]
 pub(crate) fn full<const SHIFTED: bool, V: Virial>(s: FullInputs) -> V {
-    let add = s.add;
+    match (s.add.uniform, s.add.by_type()) {
+        (uniform, None) => full_with::<SHIFTED, V, _>(s, uniform),
+        (_, Some(by_type)) => full_with::<SHIFTED, V, _>(s, by_type),
+    }
+}
+
+/// [`full`] with the pairs' friction and noise amplitude from `friction`.
+#[inline(always)]
+fn full_with<const SHIFTED: bool, V: Virial, F: Friction>(s: FullInputs, friction: F) -> V {
     let out = zeroed(s.full, s.q.len());
     s.pairs.sweep_noisy(
         SweepOrder::Forward,
         s.noise,
         s.particles,
         out,
-        move |ends, two, z, dvx| add.pair::<SHIFTED, V>(ends, two, z, dvx),
+        move |ends, two, z, dvx| Full::pair::<SHIFTED, V>(friction.of(ends), ends, two, z, dvx),
     )
 }
 
@@ -58,9 +66,17 @@ pub(crate) fn full<const SHIFTED: bool, V: Virial>(s: FullInputs) -> V {
 /// numbers. For a periodic box without walls, not recording impulses, with the list built for
 /// the current positions; leaves the table filled.
 pub(crate) fn full_while_filling(s: FullInputs) {
-    let add = s.add;
-    let forces =
-        move |ends: Ends<&[Vec3]>, two: Two<Vec3>, z, _| add.pair::<false, ()>(ends, two, z, 0.0);
+    match (s.add.uniform, s.add.by_type()) {
+        (uniform, None) => full_while_filling_with(s, uniform),
+        (_, Some(by_type)) => full_while_filling_with(s, by_type),
+    }
+}
+
+/// [`full_while_filling`] with the pairs' friction and noise amplitude from `friction`.
+fn full_while_filling_with<F: Friction>(s: FullInputs, friction: F) {
+    let forces = move |ends: Ends<&[Vec3]>, two: Two<Vec3>, z, _| {
+        Full::pair::<false, ()>(friction.of(ends), ends, two, z, 0.0)
+    };
     let each = |run: Run<Vec3, _>| run.sweep(forces);
     let out = zeroed(s.full, s.q.len());
     s.pairs
@@ -81,25 +97,63 @@ pub(crate) struct FullInputs<'a> {
     pub(crate) noise: Option<Noise<'a>>,
 }
 
+/// The friction `gamma` and the scaled noise amplitude `c sigma` of a pair, `c` fixed by the
+/// flow (1 for the pairwise sweeps, `1 / sqrt(dt)` for the full forces): one pair of values
+/// for every pair ([`Uniform`]), or each pair's by its types ([`ByType`]). A flow is compiled
+/// for each, so that a system whose pairs share one friction reads no types for it.
+pub(crate) trait Friction: Copy + Send + Sync {
+    fn of<M: Copy>(self, ends: Ends<M>) -> (f64, f64);
+}
+
+/// The same `(gamma, c sigma)` for every pair.
+#[derive(Clone, Copy)]
+pub(crate) struct Uniform(pub(crate) f64, pub(crate) f64);
+
+impl Friction for Uniform {
+    #[inline(always)]
+    fn of<M: Copy>(self, _: Ends<M>) -> (f64, f64) {
+        (self.0, self.1)
+    }
+}
+
+/// `(gamma_ij, c sigma_ij)` of each pair's types, `c` the field.
+#[derive(Clone, Copy)]
+pub(crate) struct ByType(pub(crate) f64);
+
+impl Friction for ByType {
+    #[inline(always)]
+    fn of<M: Copy>(self, ends: Ends<M>) -> (f64, f64) {
+        let (gamma, sigma) = ends.friction();
+        (gamma, self.0 * sigma)
+    }
+}
+
 /// The full DPD force of one pair added to the totals of its particles: what [`full`] does
 /// over a table, and what a fill does run by run ([`PairTable::collect_then`]), so that both
 /// give the same numbers.
 #[derive(Clone, Copy)]
 pub(crate) struct Full {
-    rc: f64,
-    gamma: f64,
-    /// `sigma / sqrt(dt)`.
-    noise: f64,
+    /// `(gamma, sigma / sqrt(dt))` of every pair, the largest ones when they differ.
+    uniform: Uniform,
+    /// Whether the pairs' frictions differ.
+    by_type: bool,
+    /// `1 / sqrt(dt)`.
+    noise_scale: f64,
 }
 
 impl Full {
     /// The forces of `params` at time step `dt` (which scales the random force).
     pub(crate) fn new(params: &Params, dt: f64) -> Self {
         Full {
-            rc: params.rc(),
-            gamma: params.gamma(),
-            noise: params.sigma() / dt.sqrt(),
+            uniform: Uniform(params.gamma(), params.sigma() / dt.sqrt()),
+            by_type: params.friction_by_type(),
+            noise_scale: 1.0 / dt.sqrt(),
         }
+    }
+
+    /// The friction of each pair, when the pairs' frictions differ.
+    fn by_type(self) -> Option<ByType> {
+        self.by_type.then_some(ByType(self.noise_scale))
     }
 
     /// The noise these forces need: stream `stream` of `step` under `seed`, pairs keyed by
@@ -111,7 +165,7 @@ impl Full {
         stream: u8,
         id: &'b [u32],
     ) -> Option<Noise<'b>> {
-        (self.noise > 0.0).then_some(Noise {
+        (self.uniform.1 > 0.0).then_some(Noise {
             seed,
             step,
             stream,
@@ -119,12 +173,13 @@ impl Full {
         })
     }
 
-    /// Add the force of the pair of `ends` with standard normal `z` and velocity shift `dvx`
-    /// (used only when `SHIFTED`) to the total of particle i and its opposite to that of j, and
-    /// return its dissipative and random part as `V`.
+    /// Add the force of the pair of `ends`, with friction `gamma`, scaled noise amplitude
+    /// `noise = sigma / sqrt(dt)`, standard normal `z` and velocity shift `dvx` (used only when
+    /// `SHIFTED`) to the total of particle i and its opposite to that of j, and return its
+    /// dissipative and random part as `V`.
     #[inline(always)]
-    pub(crate) fn pair<const SHIFTED: bool, V: Virial>(
-        &self,
+    fn pair<const SHIFTED: bool, V: Virial>(
+        (gamma, noise): (f64, f64),
         ends: Ends<&[Vec3]>,
         two: Two<Vec3>,
         z: f64,
@@ -134,12 +189,12 @@ impl Full {
         let ((pi, pj), (mi, mj)) = (ends.momenta(), ends.inv_masses());
         let u = pair.normal_velocity::<SHIFTED>(pi * mi, pj * mj, dvx);
         let conservative = ends.soft().force(pair.w);
-        let f = full_pair_force(conservative, self.gamma, self.noise, pair.wr, u, z);
+        let f = full_pair_force(conservative, gamma, noise, pair.wr, u, z);
         let fe = f * pair.e;
         let (fi, fj) = two.split();
         *fi += fe;
         *fj -= fe;
-        V::of(pair, self.rc, f - conservative)
+        V::of(pair, || ends.rc(), f - conservative)
     }
 }
 

@@ -141,16 +141,14 @@ impl Metropolis {
 
     /// The energy of particle `i` placed at `x` with every other particle.
     fn energy_of(&self, i: usize, x: Vec3) -> f64 {
-        let rc = self.params.rc();
         let mut u = 0.0;
         self.cells.around(&x, |j| {
             if j != i {
                 let r = self.bx.min_image(x - self.q[j]).norm();
+                let (ti, tj) = (self.kinds[i], self.kinds[j]);
+                let rc = self.params.rc_of(ti, tj);
                 if r < rc {
-                    u += self
-                        .params
-                        .soft(self.kinds[i], self.kinds[j])
-                        .energy(1.0 - r / rc);
+                    u += self.params.soft(ti, tj).energy(1.0 - r / rc);
                 }
             }
         });

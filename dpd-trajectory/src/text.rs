@@ -133,7 +133,6 @@ mod tests {
             types: vec!["A".into(), "W".into()],
             masses: None,
             log: vec![("kinetic_temperature".into(), 1.25)],
-            bonds: None,
         }
     }
 

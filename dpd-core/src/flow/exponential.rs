@@ -86,7 +86,6 @@ pub fn exponential_velocity(sys: &mut System, h: f64, stream: u8, noise: EtdNois
         body_force,
     } = sys.pair_state(stream);
     let n = p.len();
-    let (gamma, sigma) = (params.gamma(), params.sigma());
     // force: F^C + F^D (+ F^ext); rate: sum gamma w_D e_alpha^2 (divided by m_i below);
     // kick: sum sigma w_R e xi; per pair, while recording: the dissipative and random scalars.
     let mut force = vec![Vec3::zeros(); n];
@@ -97,6 +96,7 @@ pub fn exponential_velocity(sys: &mut System, h: f64, stream: u8, noise: EtdNois
     for (k, pair) in pairs.iter().enumerate() {
         let dvx = shifts.map_or(0.0, |s| s[k]);
         let (i, j) = (pair.i as usize, pair.j as usize);
+        let (gamma, sigma) = params.friction(kind[i], kind[j]);
         let wd = pair.wr * pair.wr;
         let (vi, vj) = (p[i] * inv_mass[i], p[j] * inv_mass[j]);
         let u = if shifted {
@@ -182,14 +182,15 @@ fn pair_virial(
         .zip(pair_forces)
         .map(|(pair, &[dissipative, random])| {
             let (ci, cj) = (factors(pair.i as usize), factors(pair.j as usize));
-            let soft = params.soft(kind[pair.i as usize], kind[pair.j as usize]);
+            let (ti, tj) = (kind[pair.i as usize], kind[pair.j as usize]);
+            let soft = params.soft(ti, tj);
             let conservative = soft.force(pair.w);
             let drift = 0.5 * (ci.drift + cj.drift);
             let spread = 0.5 * (ci.spread + cj.spread);
             let impulse = ((conservative + dissipative) * drift + random * spread
                 - Vec3::repeat(h * conservative))
             .component_mul(&pair.e);
-            (pair.r(params.rc()) * pair.e) * impulse.transpose()
+            (pair.r(params.rc_of(ti, tj)) * pair.e) * impulse.transpose()
         })
         .sum()
 }

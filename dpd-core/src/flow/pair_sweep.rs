@@ -3,6 +3,7 @@ use super::expm1::expm1;
 use super::expm1::expm1_within;
 #[cfg(target_arch = "x86_64")]
 use crate::avx2::Avx2;
+use crate::force::{ByType, Friction, Uniform};
 use crate::lanes::Lanes;
 #[cfg(target_arch = "x86_64")]
 use crate::lanes::{F64x4, F64x4x2, Vector};
@@ -75,8 +76,7 @@ fn sweep_with<const SHIFTED: bool, V: Virial>(
         ..
     } = state;
     let noise = (params.sigma() > 0.0).then_some(noise);
-    let particles = Particles::new(inv_mass, kind, params.repulsion());
-    let rc = params.rc();
+    let particles = Particles::new(inv_mass, kind, params.coefficients());
     pairs.sweep_prepared(
         order,
         noise,
@@ -94,7 +94,7 @@ fn sweep_with<const SHIFTED: bool, V: Virial>(
             let dp = impulse * pair.e;
             *pi += dp;
             *pj -= dp;
-            V::of(pair, rc, impulse - change.conservative)
+            V::of(pair, || ends.rc(), impulse - change.conservative)
         },
     )
 }
@@ -231,15 +231,20 @@ pub fn ou(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
         return;
     }
     let mark = sys.heat_mark();
-    sweep(
-        sys,
-        stream,
-        order,
-        #[inline(always)]
-        move |span: Span, z: &[f64], out: &mut Vec<Change>| {
-            ou_changes((gamma, kbt, h), span, z, out)
-        },
-    );
+    if sys.params().friction_by_type() {
+        let change = move |ends: Ends, r| ou_pair((ByType(1.0).of(ends).0, kbt, h), ends, r);
+        sweep(sys, stream, order, pair_by_pair(change));
+    } else {
+        sweep(
+            sys,
+            stream,
+            order,
+            #[inline(always)]
+            move |span: Span, z: &[f64], out: &mut Vec<Change>| {
+                ou_changes((gamma, kbt, h), span, z, out)
+            },
+        );
+    }
     sys.record_heat(mark);
 }
 
@@ -252,12 +257,23 @@ pub fn bbk(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
     if gamma == 0.0 {
         return;
     }
-    let root_h = h.max(0.0).sqrt();
-    let change =
-        move |ends: Ends, r: f64| bbk_update(gamma, sigma, h, root_h, ends.pair().wr, ends.mu(), r);
     let mark = sys.heat_mark();
-    sweep(sys, stream, order, pair_by_pair(change));
+    match sys.params().friction_by_type() {
+        false => bbk_with(sys, Uniform(gamma, sigma), h, stream, order),
+        true => bbk_with(sys, ByType(1.0), h, stream, order),
+    }
     sys.record_heat(mark);
+}
+
+/// [`bbk`] with the pairs' friction and noise amplitude from `friction`.
+#[inline(always)]
+fn bbk_with(sys: &mut System, friction: impl Friction, h: f64, stream: u8, order: SweepOrder) {
+    let root_h = h.max(0.0).sqrt();
+    let change = move |ends: Ends, r: f64| {
+        let (gamma, sigma) = friction.of(ends);
+        bbk_update(gamma, sigma, h, root_h, ends.pair().wr, ends.mu(), r)
+    };
+    sweep(sys, stream, order, pair_by_pair(change));
 }
 
 /// The BBK update of one pair (see [`bbk`]) with `root_h = sqrt(max(h, 0))`, random weight
@@ -280,15 +296,26 @@ pub fn bbk_update(gamma: f64, sigma: f64, h: f64, root_h: f64, wr: f64, mu: f64,
 /// `f = a_ij (1 - r/r_c)` and `phi1(x) = (1 - exp(-x)) / x`, `phi1(0) = 1`.
 #[inline]
 pub fn trotter(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
-    let (gamma, kbt) = (sys.params().gamma(), sys.params().kbt());
+    let (gamma, sigma) = (sys.params().gamma(), sys.params().sigma());
     sys.count_force_evaluation();
+    match sys.params().friction_by_type() {
+        false => trotter_with(sys, Uniform(gamma, sigma), h, stream, order),
+        true => trotter_with(sys, ByType(1.0), h, stream, order),
+    }
+    sys.apply_body_force(h);
+}
+
+/// [`trotter`] with the pairs' friction from `friction`.
+#[inline(always)]
+fn trotter_with(sys: &mut System, friction: impl Friction, h: f64, stream: u8, order: SweepOrder) {
+    let kbt = sys.params().kbt();
     let change = move |ends: Ends, r: f64| {
         let pair = ends.pair();
         let f = ends.soft().force(pair.w);
+        let (gamma, _) = friction.of(ends);
         trotter_update(gamma, kbt, h, f, pair.wr, ends.mu(), r)
     };
     sweep(sys, stream, order, pair_by_pair(change));
-    sys.apply_body_force(h);
 }
 
 /// The T update of one pair (see [`trotter`]) with conservative pair force `f` along `e_ij`
@@ -333,7 +360,7 @@ mod tests {
         let params = Params::builder().build().unwrap();
         let inv_mass: Vec<f64> = (0..64).map(|k| 0.1 + (k as f64 * 0.11) % 5.0).collect();
         let kind = vec![0; inv_mass.len()];
-        let particles = Particles::new(&inv_mass, &kind, params.repulsion());
+        let particles = Particles::new(&inv_mass, &kind, params.coefficients());
         for (k, big) in (0..1000).zip([1.0, 1.0, 1.0, 300.0].into_iter().cycle()) {
             let t = k as f64;
             let n = 4 + k % 13;

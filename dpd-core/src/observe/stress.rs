@@ -61,15 +61,13 @@ pub fn stress(sys: &mut System) -> Option<Stress> {
     })
 }
 
-/// The dissipative stress of the current state, `(gamma / V) sum_pairs w_D r (e . v_ij) e (x) e`
+/// The dissipative stress of the current state, `(1 / V) sum_pairs gamma_ij w_D r (e . v_ij) e (x) e`
 /// (`v_ij` with the pair's image velocity across a sliding boundary or its wall velocity):
 /// the continuous-time formula evaluated at the sampled velocities. The random force, of zero
 /// mean given the state, is left out. An alternative to the applied impulses of [`stress`]:
 /// both have the same mean as `dt -> 0`, and at finite `dt` they differ (docs/papers.md, 003
 /// Table 6).
 pub fn state_dissipative_stress(sys: &mut System) -> Tensor {
-    let gamma = sys.params().gamma();
-    let rc = sys.params().rc();
     let volume = sys.boundary().volume();
     // The pairs first: a list build re-sorts the particles.
     sys.ensure_pairs();
@@ -79,10 +77,13 @@ pub fn state_dissipative_stress(sys: &mut System) -> Tensor {
         .zip(sys.inverse_masses())
         .map(|(p, im)| p * *im)
         .collect();
+    let (params, kind) = (sys.params().clone(), sys.kinds().to_vec());
     let pairs = sys.pairs();
     let shifts = pairs.shifts();
     let mut sum = Tensor::zeros();
     for (k, pair) in pairs.iter().enumerate() {
+        let (ti, tj) = (kind[pair.i as usize], kind[pair.j as usize]);
+        let (gamma, rc) = (params.friction(ti, tj).0, params.rc_of(ti, tj));
         let dvx = shifts.map_or(0.0, |s| s[k]);
         let u = pair.e.dot(&(v[pair.i as usize] - v[pair.j as usize])) + pair.e.x * dvx;
         sum += (gamma * pair.wr * pair.wr * pair.r(rc) * u) * pair.e * pair.e.transpose();

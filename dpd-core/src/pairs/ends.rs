@@ -5,29 +5,33 @@
 //! and without unsafe code.
 
 use super::{Bound, Pair};
-use crate::params::Repulsion;
+use crate::params::Coefficients;
 use crate::potential::Soft;
 use crate::Vec3;
 
 /// The particles as pair updates read them: inverse masses (0 for frozen particles), types
-/// and the repulsion of each pair of types, and, where an update reads the momenta without
+/// and the coefficients of each pair of types, and, where an update reads the momenta without
 /// writing them (the full forces), the momenta: `M` is `&[Vec3]` then, `()` otherwise.
 #[derive(Clone, Copy)]
 pub(crate) struct Particles<'a, M = ()> {
     inv_mass: &'a [f64],
     kind: &'a [u16],
-    repulsion: Repulsion<'a>,
+    coefficients: Coefficients<'a>,
     momenta: M,
 }
 
 impl<'a> Particles<'a> {
-    /// Particles with inverse masses `inv_mass`, types `kind` and the repulsion between types
-    /// `repulsion`, one entry per particle in each array.
-    pub(crate) fn new(inv_mass: &'a [f64], kind: &'a [u16], repulsion: Repulsion<'a>) -> Self {
+    /// Particles with inverse masses `inv_mass` and types `kind`, one entry per particle in
+    /// each, and the `coefficients` of each pair of types.
+    pub(crate) fn new(
+        inv_mass: &'a [f64],
+        kind: &'a [u16],
+        coefficients: Coefficients<'a>,
+    ) -> Self {
         Particles {
             inv_mass,
             kind,
-            repulsion,
+            coefficients,
             momenta: (),
         }
     }
@@ -37,22 +41,27 @@ impl<'a> Particles<'a> {
         let Particles {
             inv_mass,
             kind,
-            repulsion,
+            coefficients,
             ..
         } = self;
         Particles {
             inv_mass,
             kind,
-            repulsion,
+            coefficients,
             momenta: p,
         }
     }
 }
 
-impl<M: Momenta> Particles<'_, M> {
+impl<'a, M: Momenta> Particles<'a, M> {
     /// The number of particles.
     pub(crate) fn len(&self) -> usize {
         self.kind.len()
+    }
+
+    /// The types, one per particle.
+    pub(super) fn kinds(self) -> &'a [u16] {
+        self.kind
     }
 
     /// Panics unless every per-particle array has an entry for each index below `bound`:
@@ -126,8 +135,25 @@ impl<'a, M: Copy> Ends<'a, M> {
     #[inline(always)]
     pub(crate) fn soft(self) -> Soft {
         self.particles
-            .repulsion
+            .coefficients
             .soft(|| self.both(self.particles.kind))
+    }
+
+    /// The friction and noise amplitude `(gamma_ij, sigma_ij)` of the pair's types (read only
+    /// where the pairs' frictions differ).
+    #[inline(always)]
+    pub(crate) fn friction(self) -> (f64, f64) {
+        self.particles
+            .coefficients
+            .friction(|| self.both(self.particles.kind))
+    }
+
+    /// The cut-off `r_c,ij` of the pair's types (read only where the pairs' cut-offs differ).
+    #[inline(always)]
+    pub(crate) fn rc(self) -> f64 {
+        self.particles
+            .coefficients
+            .rc(|| self.both(self.particles.kind))
     }
 
     /// `(column[i], column[j])` for a per-particle array of [`Particles`].

@@ -503,7 +503,7 @@ mod tests {
         let inv_mass: Vec<f64> = (0..visits.len()).map(|i| i as f64).collect();
         let kind = vec![0; visits.len()];
         let params = crate::Params::builder().build().unwrap();
-        let particles = Particles::new(&inv_mass, &kind, params.repulsion());
+        let particles = Particles::new(&inv_mass, &kind, params.coefficients());
         let out = Disjoint::new(&mut visits);
         // SAFETY: the runs join distinct particles below `100 * runs`, disjoint between runs,
         // and one thread visits them.

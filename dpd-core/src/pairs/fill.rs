@@ -14,8 +14,12 @@ impl PairTable {
     /// the list's candidates, or with skin 0 straight from the scan of its grid (then `q` must
     /// be in the cell order of its last build, as a [`crate::System`] keeps it).
     ///
+    /// A pair interacts within the cut-off of its types (`kind`, one per particle, read only
+    /// when the cut-offs differ).
+    ///
     /// Coincident particles (`r = 0`) have no defined direction; such a pair is left out, so it
     /// exerts no force rather than a NaN one.
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn collect(
         &mut self,
         list: &VerletList,
@@ -24,13 +28,14 @@ impl PairTable {
         shear: Option<&LeesEdwards>,
         walls: Option<&FrozenWalls>,
         params: &Params,
+        kind: &[u16],
     ) {
         match (shear, walls) {
-            (None, None) => self.fill_plainly(list, q, bx, params, |_: &[Pair]| {}),
+            (None, None) => self.fill_plainly(list, q, bx, params, kind, |_: &[Pair]| {}),
             // The scan's separation is the image, but the velocity shift needs the crossing
             // count: both come from the positions.
             (Some(le), _) => {
-                let fill = self.start_fill(list, q, bx, shear, params, true);
+                let fill = self.start_fill(list, q, bx, shear, (params, kind), true);
                 let image = |i: u32, j: u32| le.min_image(bx, q[i as usize] - q[j as usize]);
                 let from_positions = |i, j, _| Some(image(i, j).0);
                 fill.into(self, from_positions, Some(from_positions), |_: &[Pair]| {});
@@ -38,7 +43,7 @@ impl PairTable {
                 self.shifts.extend(shifts);
             }
             (None, Some(w)) => {
-                let fill = self.start_fill(list, q, bx, None, params, true);
+                let fill = self.start_fill(list, q, bx, None, (params, kind), true);
                 let mobile = |i: u32, j: u32, d: Vec3| {
                     (!(w.frozen[i as usize] && w.frozen[j as usize])).then_some(d)
                 };
@@ -69,6 +74,7 @@ impl PairTable {
         after: impl Fn(Run<W, M>) + Sync,
     ) {
         let bound = Bound::of(q);
+        let kind = particles.kinds();
         let noise = noise.map(|noise| noise.of(bound));
         particles.check(bound);
         let out = bound.write(out);
@@ -84,7 +90,7 @@ impl PairTable {
                 out,
             })
         };
-        self.fill_plainly(list, q, bx, params, run);
+        self.fill_plainly(list, q, bx, params, kind, run);
     }
 
     /// Refill in a periodic box without walls, calling `after` with the pairs of every run once
@@ -95,22 +101,23 @@ impl PairTable {
         q: &[Vec3],
         bx: &PeriodicBox,
         params: &Params,
+        kind: &[u16],
         after: impl Fn(&[Pair]) + Sync,
     ) {
-        let fill = self.start_fill(list, q, bx, None, params, false);
+        let fill = self.start_fill(list, q, bx, None, (params, kind), false);
         let image = |_, _, d| Some(bx.min_image(d));
         fill.into(self, image, None::<Separation>, after);
     }
 
-    /// Reset the table for a fill at positions `q`, which records velocity shifts if
-    /// `shifted`, and what the fill reads.
+    /// Reset the table for a fill at positions `q` of particles of types `kind`, which records
+    /// velocity shifts if `shifted`, and what the fill reads.
     fn start_fill<'a>(
         &mut self,
         list: &'a VerletList,
         q: &'a [Vec3],
         bx: &'a PeriodicBox,
         shear: Option<&'a LeesEdwards>,
-        params: &'a Params,
+        (params, kind): (&'a Params, &'a [u16]),
         shifted: bool,
     ) -> Fill<'a> {
         self.shifted = shifted;
@@ -122,6 +129,7 @@ impl PairTable {
             bx,
             shear,
             params,
+            kind,
         }
     }
 }
@@ -131,12 +139,15 @@ impl PairTable {
 type Separation = fn(u32, u32, Vec3) -> Option<Vec3>;
 
 /// What [`PairTable::collect`] fills from.
+#[derive(Clone, Copy)]
 struct Fill<'a> {
     list: &'a VerletList,
     q: &'a [Vec3],
     bx: &'a PeriodicBox,
     shear: Option<&'a LeesEdwards>,
     params: &'a Params,
+    /// The particles' types, read for each pair when the cut-offs differ.
+    kind: &'a [u16],
 }
 
 impl Fill<'_> {
@@ -154,12 +165,27 @@ impl Fill<'_> {
         scanned: Option<impl Fn(u32, u32, Vec3) -> Option<Vec3> + Sync>,
         after: impl Fn(&[Pair]) + Sync,
     ) {
+        if self.params.cutoff_by_type() {
+            let (params, kind) = (self.params, self.kind);
+            let pair = move |i: u32, j: u32, d: Vec3| -> Option<Pair> {
+                let r2 = d.norm_squared();
+                let rc = params.rc_of(kind[i as usize], kind[j as usize]);
+                (r2 < rc * rc && r2 > 0.0).then(|| {
+                    let r = r2.sqrt();
+                    let w = 1.0 - r * (1.0 / rc);
+                    let (e, wr) = (d * (1.0 / r), params.w_r(w));
+                    Pair { i, j, e, w, wr }
+                })
+            };
+            return self.each(table, image, scanned, pair, after);
+        }
         let Fill {
             list,
             q,
             bx,
             shear,
             params,
+            ..
         } = self;
         let rc = params.rc();
         let rc2 = rc * rc;
@@ -205,12 +231,45 @@ impl Fill<'_> {
                     after,
                 ),
                 Some(scanned) => {
-                    let emit = |h: &Hits, out: &mut Vec<Pair>| {
-                        for k in 0..h.len() {
-                            let (j, d) = h.get(k);
-                            out.extend(scanned(h.a(), j, d).and_then(|g| pair(h.a(), j, g)))
-                        }
-                    };
+                    let emit = |h: &Hits, out: &mut Vec<Pair>| emit(scanned, &pair, h, out);
+                    grid.sweep(q, bx, shear, rc, &mut table.pairs, emit, after)
+                }
+            };
+            return;
+        }
+        self.each(table, image, scanned, pair, after);
+    }
+
+    /// [`Fill::into`] with `pair(i, j, d)` making the pair at separation `d`, or `None` when it
+    /// does not interact, for every candidate or hit.
+    #[inline(always)]
+    fn each(
+        self,
+        table: &mut PairTable,
+        image: impl Fn(u32, u32, Vec3) -> Option<Vec3> + Sync,
+        scanned: Option<impl Fn(u32, u32, Vec3) -> Option<Vec3> + Sync>,
+        pair: impl Fn(u32, u32, Vec3) -> Option<Pair> + Sync,
+        after: impl Fn(&[Pair]) + Sync,
+    ) {
+        let Fill {
+            list,
+            q,
+            bx,
+            shear,
+            params,
+            ..
+        } = self;
+        let rc = params.rc();
+        if list.skin() == 0.0 {
+            let grid = list.grid();
+            table.groups = match &scanned {
+                Some(scanned) => {
+                    let emit = |h: &Hits, out: &mut Vec<Pair>| emit(scanned, &pair, h, out);
+                    grid.sweep(q, bx, shear, rc, &mut table.pairs, emit, after)
+                }
+                None => {
+                    let emit =
+                        |h: &Hits, out: &mut Vec<Pair>| emit(&|_, _, d| Some(d), &pair, h, out);
                     grid.sweep(q, bx, shear, rc, &mut table.pairs, emit, after)
                 }
             };
@@ -249,5 +308,20 @@ impl Fill<'_> {
         }
         groups.colours.clone_from(&from.colours);
         groups.independent = from.independent;
+    }
+}
+
+/// Push onto `out` the pairs of the scan's hits `h`: for each, `pair` at the separation
+/// `seen(i, j, d)` gives for the scan's minimum-image separation `d`, if both give one.
+#[inline(always)]
+fn emit(
+    seen: &impl Fn(u32, u32, Vec3) -> Option<Vec3>,
+    pair: &impl Fn(u32, u32, Vec3) -> Option<Pair>,
+    h: &Hits,
+    out: &mut Vec<Pair>,
+) {
+    for k in 0..h.len() {
+        let (j, d) = h.get(k);
+        out.extend(seen(h.a(), j, d).and_then(|g| pair(h.a(), j, g)))
     }
 }

@@ -144,23 +144,24 @@ pub(crate) struct Noise<'a> {
 
 /// What a pairwise update records per pair and [`PairTable::sweep_noisy`] adds up: `()` (nothing,
 /// at no cost) or the pair virial tensor `r_ij f e_ij (x) e_ij = q_ij (x) (f e_ij)` of a force
-/// or impulse `f` along `e_ij`.
+/// or impulse `f` along `e_ij`, with the pair's cut-off `rc()` (called only for the tensor, so
+/// that a sweep that records nothing does not look it up).
 pub(crate) trait Virial: Send + Default {
-    fn of(pair: &Pair, rc: f64, f: f64) -> Self;
+    fn of(pair: &Pair, rc: impl FnOnce() -> f64, f: f64) -> Self;
     fn add(self, other: Self) -> Self;
 }
 
 impl Virial for () {
     #[inline(always)]
-    fn of(_: &Pair, _: f64, _: f64) {}
+    fn of(_: &Pair, _: impl FnOnce() -> f64, _: f64) {}
     #[inline(always)]
     fn add(self, _: ()) {}
 }
 
 impl Virial for Tensor {
     #[inline(always)]
-    fn of(pair: &Pair, rc: f64, f: f64) -> Self {
-        (pair.r(rc) * f) * pair.e * pair.e.transpose()
+    fn of(pair: &Pair, rc: impl FnOnce() -> f64, f: f64) -> Self {
+        (pair.r(rc()) * f) * pair.e * pair.e.transpose()
     }
     #[inline(always)]
     fn add(self, other: Self) -> Self {

@@ -13,14 +13,14 @@ impl System {
         }
         if !self.fills_plainly() {
             self.ensure_pairs();
-            let particles = Particles::new(&self.inv_mass, &self.kind, self.params.repulsion());
+            let particles = Particles::new(&self.inv_mass, &self.kind, self.params.coefficients());
             force::conservative(&self.pairs, particles, &mut self.conservative);
         } else {
             // The forces of each run summed while the run is in cache, in the order of a pass
             // over the table: the same numbers.
             self.prepare_list();
             let out = force::zeroed(&mut self.conservative, self.kind.len());
-            let particles = Particles::new(&self.inv_mass, &self.kind, self.params.repulsion());
+            let particles = Particles::new(&self.inv_mass, &self.kind, self.params.coefficients());
             // A plain loop: through `Run::sweep` (AVX2-compiled, as the full forces are) ABOBA
             // ran 3 % more instructions.
             let each = |run: Run<Vec3, ()>| run.for_each(force::add_conservative);
@@ -106,7 +106,7 @@ impl System {
             q,
             bx,
             params,
-            particles: Particles::new(inv_mass, kind, params.repulsion()).with_momenta(p),
+            particles: Particles::new(inv_mass, kind, params.coefficients()).with_momenta(p),
             full,
             add,
             noise,
@@ -144,7 +144,7 @@ mod tests {
                 sys.ensure_full(1);
                 let filled_f = sys.full.clone();
                 let mut pass = Vec::new();
-                let particles = Particles::new(&sys.inv_mass, &sys.kind, sys.params.repulsion());
+                let particles = Particles::new(&sys.inv_mass, &sys.kind, sys.params.coefficients());
                 conservative(&sys.pairs, particles, &mut pass);
                 assert_eq!(pass, filled_c, "conservative, {threads} threads");
                 sys.full_from_table(1);

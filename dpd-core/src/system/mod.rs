@@ -278,6 +278,7 @@ impl System {
                 self.shear.as_ref(),
                 self.walls.as_ref(),
                 &self.params,
+                &self.kind,
             );
             self.pairs_filled();
         }

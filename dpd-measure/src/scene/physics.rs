@@ -2,7 +2,6 @@
 //! equilibrium (shear, body force).
 
 use super::check::{non_negative, positive, require};
-use dpd_core::params::ParamsBuilder;
 use dpd_core::{ParamError, Params};
 use serde::{Deserialize, Serialize};
 
@@ -63,18 +62,14 @@ impl Physics {
         Ok(())
     }
 
-    /// The pair-force parameters of one particle type.
+    /// The pair-force parameters.
     pub fn params(&self) -> Result<Params, ParamError> {
-        self.builder().build()
-    }
-
-    /// The pair-force parameters of one particle type, unvalidated.
-    pub fn builder(&self) -> ParamsBuilder {
         Params::builder()
             .a(self.a)
             .gamma(self.gamma)
             .kbt(self.kbt)
             .weight_exponent(self.weight_exponent)
+            .build()
     }
 
     /// Whether the scene is sheared at a non-zero rate (and so measures the viscosity).
