@@ -11,7 +11,9 @@
 # differ); and pair_style dpd/soft against pair dpd at zero friction on a two-type mixture
 # (forces, energy, per-atom tallies, 1 and 2 ranks); and per type-pair friction and cutoff against
 # pair dpd + fix nve on a two-type mixture; and ABOBA's `tally evaluation` energy against `dpd run`
-# of its cyclic shift B(1/2) O B(1/2) A. The exported tree is built in a fresh directory
+# of its cyclic shift B(1/2) O B(1/2) A; and LAMMPS data files written by `dpd run --write-data`
+# and by LAMMPS's write_data starting the other engine in the same state (energy, temperature,
+# virial pressure). The exported tree is built in a fresh directory
 # without cargo, rustc or the checkout (docs/lammps.md, "Export and build"). The full evidence (1 and 2 ranks, 2000
 # steps, the plugin's VV against pair dpd + fix nve; shear over 400 time units) is run by hand:
 # `bash scripts/test-lammps.sh --only equilibrium` and `--only shear` (numbers in
@@ -56,6 +58,6 @@ plugin=$cache/dpdsplitplugin.so
 cp "$fresh/build/dpdsplitplugin.so" "$plugin"
 echo "built $plugin in a fresh directory without cargo"
 [ $# -eq 0 ] && set -- --only=bad --only=repeat --only=equilibrium --ranks=2 --steps=400 --no-native \
-    --only=shear --shear-time=100 --only=soft --only=trotter --only=pairs --only=restart --only=temp --only=tally
+    --only=shear --shear-time=100 --only=soft --only=trotter --only=pairs --only=restart --only=temp --only=tally --only=data
 "$venv/bin/python" scripts/lammps/check.py --lmp "$venv/bin/lmp" --mpirun "$venv/bin/mpirun" \
     --plugin "$plugin" --dpd "$dpd" --work "$cache/runs" "$@"

@@ -217,6 +217,19 @@ fn keys(values: &[&Value]) -> Names {
         .collect()
 }
 
+/// What a scene table's keys are read from: an array of tables (`[[species]]`) its tables, a
+/// table of tables keyed by the user's names (`[pairs]`, keyed `A-B`) those tables, any other
+/// table itself.
+fn entries(v: &Value) -> Vec<&Value> {
+    match v {
+        Value::Array(items) => items.iter().collect(),
+        Value::Object(o) if !o.is_empty() && o.values().all(Value::is_object) => {
+            o.values().collect()
+        }
+        v => vec![v],
+    }
+}
+
 /// The elements of the array `v[key]`.
 fn each<'a>(v: &'a Value, key: &str) -> Vec<&'a Value> {
     v[key]
@@ -260,8 +273,18 @@ fn outputs() -> BTreeMap<&'static str, Vec<Value>> {
         "grid.toml",
         &format!("{tiny}[sweep]\ndt_min = 0.04\ndt_max = 0.07\ndt_factor = 1.5\n"),
     );
+    let mixture = write(
+        d,
+        "mixture.toml",
+        &format!(
+            "{tiny}like_neighbours = true\n[rdf]\nr_max = 1.5\nbins = 5\n[profile]\nbins = 2\n\
+             [[species]]\nname = \"A\"\nfraction = 0.5\nmass = 2.0\n[[species]]\n\
+             name = \"B\"\nfraction = 0.5\n[pairs]\nA-A = {{ a = 25.0 }}\n\
+             B-B = {{ a = 25.0 }}\nA-B = {{ a = 40.0 }}\n"
+        ),
+    );
     let run = |scene: &str| json(&dpd(d, &["run", "--scene", scene, "--json"]));
-    let runs = [run(&observed), run(&channel)];
+    let runs = [run(&observed), run(&channel), run(&mixture)];
     let sweep_out = dpd(d, &["sweep", "--scene", &sheared, "--json", "s.json"]);
     assert!(sweep_out.status.success(), "{sweep_out:?}");
     let sweep: Value = serde_json::from_slice(&std::fs::read(d.join("s.json")).unwrap()).unwrap();
@@ -462,9 +485,9 @@ fn every_json_field_and_scene_key_is_documented_and_every_documented_one_is_writ
     let scene_refs: Vec<&Value> = scenes.iter().collect();
     let top: Names = rows
         .iter()
-        .flat_map(|(names, _)| match names[0].strip_prefix('[') {
-            Some(table) => vec![table.trim_end_matches(']').to_string()],
-            None => names.clone(),
+        .flat_map(|(names, _)| match names[0].starts_with('[') {
+            true => vec![names[0].trim_matches(['[', ']']).to_string()],
+            false => names.clone(),
         })
         .collect();
     assert_eq!(
@@ -474,7 +497,7 @@ fn every_json_field_and_scene_key_is_documented_and_every_documented_one_is_writ
     );
     for (names, _) in rows.iter().filter(|(n, _)| n[0].starts_with('[')) {
         let table = names[0].trim_matches(['[', ']']);
-        let sub: Vec<&Value> = scenes.iter().map(|s| &s[table]).collect();
+        let sub: Vec<&Value> = scenes.iter().flat_map(|s| entries(&s[table])).collect();
         let doc: Names = names[1..].iter().cloned().collect();
         assert_eq!(
             doc,

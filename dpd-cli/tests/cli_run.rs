@@ -109,3 +109,73 @@ fn a_bad_scheme_string_is_shown_once_with_a_caret_and_escaped() {
         assert!(!stderr.contains('\u{1b}') && !stderr.contains("registered"));
     }
 }
+
+/// A run's last state written as a LAMMPS data file starts the next run; a data file LAMMPS
+/// would refuse is refused with its line, and one whose pair coefficients the engine cannot
+/// hold names the pair.
+#[test]
+fn a_data_file_written_by_a_run_starts_the_next() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = write(dir.path(), "tiny.toml", TINY);
+    let first = [
+        "run",
+        "--scene",
+        &scene,
+        "--write-data",
+        "end.data",
+        "--json",
+    ];
+    json(&dpd(dir.path(), &first));
+    let text = std::fs::read_to_string(dir.path().join("end.data")).unwrap();
+    assert!(
+        text.contains("\n100 atoms\n") && text.contains("PairIJ Coeffs # dpd\n\n1 1 25 4.5 1\n")
+    );
+    let next = ["run", "--scene", &scene, "--init", "end.data", "--json"];
+    let v = json(&dpd(dir.path(), &next));
+    assert_eq!(v["stable"], true);
+    let bad = write(
+        dir.path(),
+        "bad.data",
+        &text.replace("1 1 25 4.5 1", "1 1 25 x 1"),
+    );
+    let out = dpd(dir.path(), &["run", "--scene", &scene, "--init", &bad]);
+    refused(&out, "line 19: `x` is not a finite number");
+    let hot = write(
+        dir.path(),
+        "hot.data",
+        &text.replace("1 1 25 4.5 1", "1 1 25 9 1"),
+    );
+    let out = dpd(dir.path(), &["run", "--scene", &scene, "--init", &hot]);
+    refused(&out, "invalid init: Pair Coeffs 1 1 = gamma 9");
+    let out = dpd(
+        dir.path(),
+        &["run", "--scene", &scene, "--write-data", "end.gsd"],
+    );
+    refused(&out, "write_data");
+}
+
+/// A mixture's run prints each species' like-neighbour fraction and writes its species
+/// profile as CSV, one column per species.
+#[test]
+fn a_mixture_prints_its_like_neighbours_and_writes_its_species_profile() {
+    let dir = tempfile::tempdir().unwrap();
+    let mixture = format!(
+        "{TINY}like_neighbours = true\n[profile]\nbins = 3\n[[species]]\nname = \"A\"\n\
+         fraction = 0.5\n[[species]]\nname = \"W\"\nfraction = 0.5\n[pairs]\n\
+         A-A = {{ a = 25.0 }}\nW-W = {{ a = 25.0 }}\nA-W = {{ a = 40.0 }}\n"
+    );
+    let scene = write(dir.path(), "mixture.toml", &mixture);
+    let out = dpd(
+        dir.path(),
+        &["run", "--scene", &scene, "--profile-dir", "p"],
+    );
+    assert!(out.status.success(), "{out:?}");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("seed 1: like neighbours within r_c: A 0."),
+        "{text}"
+    );
+    let csv = std::fs::read_to_string(dir.path().join("p/species-profile-seed1.csv")).unwrap();
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!((lines[0], lines.len()), ("z,A,W", 4), "{csv}");
+}

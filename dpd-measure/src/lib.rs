@@ -15,6 +15,7 @@ pub mod aggregate;
 pub mod batch;
 pub mod cost;
 pub mod critical;
+pub mod data_file;
 pub mod images;
 pub mod kl;
 pub mod observer;

@@ -3,6 +3,7 @@
 
 use dpd_core::observe::ProfileRow;
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 
 /// What one run is: a scheme (registry name or scheme string), a time step and a seed.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -59,6 +60,14 @@ pub struct RunResult {
     /// `[r, g(r)]` per bin, with `[rdf]` in the scene.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rdf: Option<Vec<[f64; 2]>>,
+    /// With `[rdf]` and `[[species]]`: per pair of species, keyed `"A-B"`, `[r, g_AB(r)]`
+    /// per bin.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pair_rdf: Option<BTreeMap<String, Vec<[f64; 2]>>>,
+    /// With `like_neighbours`: per species, the fraction of its particles' neighbours within
+    /// r_c that are of the same species (null for a species without neighbours).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub like_neighbours: Option<BTreeMap<String, Option<f64>>>,
     /// Diffusion coefficient from the velocity autocorrelation, with `[vacf]` in the scene.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub diffusion: Option<f64>,
@@ -69,6 +78,10 @@ pub struct RunResult {
     /// Slab profile with `[profile]` in the scene.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub profile: Option<Vec<ProfileRow>>,
+    /// With `[profile]` and `[[species]]`: per species, `[slab centre, number density]` per
+    /// slab.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub species_profile: Option<BTreeMap<String, Vec<[f64; 2]>>>,
     /// With `energy_balance`: heat taken up from the thermostat per particle and time unit, in
     /// k_B T, from the first sample of the averaging window to the end.
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -1,20 +1,30 @@
-//! Runs started from a frame of a GSD file (`init = "FILE.gsd[:frame]"`, `--init`), read by
-//! the `dpd-trajectory` crate.
+//! Runs started from a frame of a GSD file (`init = "FILE.gsd[:frame]"`) or from a LAMMPS data
+//! file (`init = "FILE.data"`), read by the `dpd-trajectory` crate (`--init`).
 
+use crate::data_file::{frame_of, repulsions};
 use dpd_core::{ParamError, Vec3};
 use dpd_trajectory::gsd::GsdReader;
+use dpd_trajectory::lammps_data::DataFile;
 use dpd_trajectory::Frame;
 use std::path::PathBuf;
 
-/// `init = "FILE.gsd[:frame]"`: the file and the frame (default: the last).
+/// `init = "FILE.gsd[:frame]"` (the frame, default the last) or `init = "FILE.data"`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct InitSpec {
     pub file: PathBuf,
+    /// The GSD frame; `None` for the last, and for a data file.
     pub frame: Option<u64>,
 }
 
+/// What a run starts from: a frame, and the repulsions a_ij of a data file's pair
+/// coefficients.
+pub struct Start {
+    pub frame: Frame,
+    pub repulsions: Option<Vec<Vec<f64>>>,
+}
+
 impl InitSpec {
-    /// Parse `FILE.gsd` or `FILE.gsd:K`.
+    /// Parse `FILE.gsd`, `FILE.gsd:K` or `FILE.data`.
     pub fn parse(text: &str) -> Result<InitSpec, ParamError> {
         let (file, frame) = match text.rsplit_once(':') {
             Some((file, k)) if file.ends_with(".gsd") => {
@@ -29,11 +39,12 @@ impl InitSpec {
             }
             _ => (text, None),
         };
-        if !file.ends_with(".gsd") {
+        if !(file.ends_with(".gsd") || file.ends_with(".data")) {
             return Err(ParamError::new(
                 "init",
                 text,
-                "must be a GSD file, FILE.gsd or FILE.gsd:frame",
+                "must be a GSD file, FILE.gsd or FILE.gsd:frame, or a LAMMPS data file, \
+                 FILE.data",
             ));
         }
         Ok(InitSpec {
@@ -42,8 +53,72 @@ impl InitSpec {
         })
     }
 
-    /// The frame, checked against the scene's particle count and box.
-    pub fn read(&self, n: usize, box_lengths: [f64; 3]) -> Result<Frame, ParamError> {
+    /// The start, checked against the scene's particle count, box and type names (`names`,
+    /// empty without species); a data file's pair coefficients are checked against the
+    /// scene's `gamma`.
+    pub fn read(
+        &self,
+        n: usize,
+        box_lengths: [f64; 3],
+        names: &[String],
+        gamma: f64,
+    ) -> Result<Start, ParamError> {
+        let bad = |message: String| ParamError::new("init", self.file.display(), message);
+        let (k, start) = match self.file.extension().and_then(|e| e.to_str()) {
+            Some("data") => {
+                let data = DataFile::read(&self.file).map_err(|e| bad(e.to_string()))?;
+                let frame = frame_of(&data).map_err(bad)?;
+                let repulsions = repulsions(&data, gamma)?;
+                let types = data.atom_types as usize;
+                if !names.is_empty() && types != names.len() {
+                    return Err(bad(format!(
+                        "has {types} atom types, the scene {} species",
+                        names.len()
+                    )));
+                }
+                if let Some(labels) = data.type_labels.as_ref().filter(|_| !names.is_empty()) {
+                    if labels != names {
+                        return Err(bad(format!(
+                            "its Atom Type Labels {labels:?} are not the scene's species \
+                             {names:?} in their order"
+                        )));
+                    }
+                }
+                ("the file".to_string(), Start { frame, repulsions })
+            }
+            _ => {
+                let (frame, k) = self.gsd_frame()?;
+                if !names.is_empty() && frame.types != names {
+                    return Err(ParamError::new(
+                        "init: types",
+                        format!("{:?}", frame.types),
+                        format!("must be the scene's species, {names:?}, in their order"),
+                    ));
+                }
+                let repulsions = None;
+                (format!("frame {k}"), Start { frame, repulsions })
+            }
+        };
+        let f = &start.frame;
+        if f.len() != n {
+            return Err(bad(format!(
+                "{k} has {} particles, the scene {n}: set n (or box and density) to match",
+                f.len()
+            )));
+        }
+        let mismatch = |a: f64, b: f64| (a - b).abs() > 1e-5 * b.abs();
+        if (0..3).any(|d| mismatch(f.box_lengths[d], box_lengths[d])) {
+            return Err(bad(format!(
+                "{k} has box {:?}, the scene {box_lengths:?}: set box (or n and density) \
+                 to match",
+                f.box_lengths
+            )));
+        }
+        Ok(start)
+    }
+
+    /// The GSD frame and its index.
+    fn gsd_frame(&self) -> Result<(Frame, u64), ParamError> {
         let bad = |message: String| ParamError::new("init", self.file.display(), message);
         let reader = GsdReader::open(&self.file).map_err(|e| bad(e.to_string()))?;
         let k = match self.frame {
@@ -52,29 +127,17 @@ impl InitSpec {
             None => return Err(bad("the file has no frame".into())),
         };
         let f = reader.frame(k).map_err(|e| bad(e.to_string()))?;
-        if f.len() != n {
-            return Err(bad(format!(
-                "frame {k} has {} particles, the scene {n}: set n (or box and density) to match",
-                f.len()
-            )));
-        }
-        let mismatch = |a: f64, b: f64| (a - b).abs() > 1e-5 * b.abs();
-        if (0..3).any(|d| mismatch(f.box_lengths[d], box_lengths[d])) {
-            return Err(bad(format!(
-                "frame {k} has box {:?}, the scene {box_lengths:?}: set box (or n and density) \
-                 to match",
-                f.box_lengths
-            )));
-        }
-        Ok(f)
+        Ok((f, k))
     }
 }
 
-/// Positions, momenta, masses (`mass` where the file has none) and types of `f` for a system
-/// of `types` particle types.
+/// Positions, momenta, masses and types of a frame.
 pub type InitialState = (Vec<Vec3>, Vec<Vec3>, Vec<f64>, Vec<u16>);
 
-pub fn initial_state(f: &Frame, mass: f64, types: usize) -> Result<InitialState, ParamError> {
+/// The state of `f` for a scene whose types have masses `type_masses` (a particle's mass where
+/// the file has none).
+pub fn initial_state(f: &Frame, type_masses: &[f64]) -> Result<InitialState, ParamError> {
+    let types = type_masses.len();
     if let Some(i) = f.typeid.iter().position(|&t| t as usize >= types) {
         return Err(ParamError::new(
             format!("init: typeid of particle {i}"),
@@ -86,7 +149,10 @@ pub fn initial_state(f: &Frame, mass: f64, types: usize) -> Result<InitialState,
         ));
     }
     let to = |v: &[f64; 3]| Vec3::new(v[0], v[1], v[2]);
-    let masses = f.masses.clone().unwrap_or_else(|| vec![mass; f.len()]);
+    let masses = match &f.masses {
+        Some(m) => m.clone(),
+        None => f.typeid.iter().map(|&t| type_masses[t as usize]).collect(),
+    };
     let q = f.positions.iter().map(to).collect();
     let p = match &f.velocities {
         Some(v) => v.iter().zip(&masses).map(|(v, m)| to(v) * *m).collect(),

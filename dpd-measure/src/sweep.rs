@@ -202,6 +202,14 @@ pub fn run_sweep(
         )
         .into());
     }
+    if let Some(file) = &scene.output.write_data {
+        return Err(ParamError::new(
+            "write_data",
+            file.display(),
+            "data files are written by `dpd run` only: remove write_data for a sweep",
+        )
+        .into());
+    }
     let batch = Batch::new(scene, plan(scene))
         .map_err(|e| ParamError::new("sweep.schemes", &e.scheme, format!("not a scheme: {e}")))?;
     let completed = |points: &[RunResult]| -> Vec<RunResult> {

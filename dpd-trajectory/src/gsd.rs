@@ -13,7 +13,7 @@
 //! Type names, type ids and masses are written in frame 0 and again only in a frame where they
 //! change: the HOOMD schema reads a chunk missing from a frame from frame 0.
 
-use super::{Frame, TrajectoryError};
+use super::{Bonds, Frame, TrajectoryError};
 use std::fs::File;
 use std::os::unix::fs::FileExt;
 use std::path::{Path, PathBuf};
@@ -80,6 +80,9 @@ const PARTICLES: [&str; 7] = [
     "particles/types",
     "particles/velocity",
 ];
+
+/// The bond chunks, after the particles'.
+const BONDS: [&str; 4] = ["bonds/N", "bonds/group", "bonds/typeid", "bonds/types"];
 
 /// One index entry: where a chunk of a frame is and what it holds.
 #[derive(Clone, Copy, Debug)]
@@ -184,7 +187,7 @@ impl GsdWriter {
         logs.sort();
         logs.dedup();
         names.extend(logs);
-        names.extend(PARTICLES.iter().map(|s| s.to_string()));
+        names.extend(PARTICLES.iter().chain(&BONDS).map(|s| s.to_string()));
         let mut namelist: Vec<u8> = names
             .iter()
             .flat_map(|s| [s.as_bytes(), b"\0"].concat())
@@ -303,18 +306,13 @@ impl GsdWriter {
             add("particles/image", Kind::I32, n, 3, bytes)?;
         }
         if first.is_none_or(|g| g.types != f.types) {
-            let width = f.types.iter().map(|t| t.len()).max().unwrap_or(0) + 1;
-            let bytes = f.types.iter().flat_map(|t| {
-                let mut b = t.as_bytes().to_vec();
-                b.resize(width, 0);
-                b
-            });
+            let (width, bytes) = names_bytes(&f.types);
             add(
                 "particles/types",
                 Kind::I8,
                 f.types.len() as u64,
-                width as u32,
-                bytes.collect(),
+                width,
+                bytes,
             )?;
         }
         if first.is_none_or(|g| g.typeid != f.typeid) {
@@ -327,6 +325,31 @@ impl GsdWriter {
             .filter(|m| first.is_none_or(|g| g.masses.as_ref() != Some(m)))
         {
             add("particles/mass", Kind::F32, n, 1, f32s(m.iter().copied()))?;
+        }
+        if let Some(b) = f
+            .bonds
+            .as_ref()
+            .filter(|b| first.is_none_or(|g| g.bonds.as_ref() != Some(b)))
+        {
+            let count = b.group.len() as u64;
+            add(
+                "bonds/N",
+                Kind::U32,
+                1,
+                1,
+                (count as u32).to_le_bytes().to_vec(),
+            )?;
+            let (width, bytes) = names_bytes(&b.types);
+            add("bonds/types", Kind::I8, b.types.len() as u64, width, bytes)?;
+            let typeid = b.typeid.iter().flat_map(|t| t.to_le_bytes()).collect();
+            add("bonds/typeid", Kind::U32, count, 1, typeid)?;
+            let group = b
+                .group
+                .iter()
+                .flatten()
+                .flat_map(|i| i.to_le_bytes())
+                .collect();
+            add("bonds/group", Kind::U32, count, 2, group)?;
         }
         out.sort_by_key(|c| c.id);
         Ok(out)
@@ -380,12 +403,40 @@ impl GsdWriter {
                 types: f.types.clone(),
                 typeid: f.typeid.clone(),
                 masses: f.masses.clone(),
+                bonds: f.bonds.clone(),
                 ..Frame::default()
             });
         }
         self.frame += 1;
         Ok(())
     }
+}
+
+/// `names` as GSD stores type names: each padded with zeros to the longest plus one; the
+/// width and the bytes.
+fn names_bytes(names: &[String]) -> (u32, Vec<u8>) {
+    let width = names.iter().map(|t| t.len()).max().unwrap_or(0) + 1;
+    let bytes = names.iter().flat_map(|t| {
+        let mut b = t.as_bytes().to_vec();
+        b.resize(width, 0);
+        b
+    });
+    (width as u32, bytes.collect())
+}
+
+/// Names stored `width` bytes each, zero-padded (see [`names_bytes`]).
+fn names_of(width: u32, bytes: &[u8]) -> Vec<String> {
+    let each = bytes.chunks_exact(width.max(1) as usize);
+    let name = |t: &[u8]| t.split(|&c| c == 0).next().unwrap_or_default().to_vec();
+    each.map(|t| String::from_utf8_lossy(&name(t)).into_owned())
+        .collect()
+}
+
+/// Little-endian u32s of `bytes`.
+fn u32s(bytes: &[u8]) -> Vec<u32> {
+    let each = bytes.chunks_exact(4);
+    each.map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+        .collect()
 }
 
 /// Little-endian f32 bytes of `values` (the schema stores positions, velocities, masses and
@@ -541,6 +592,32 @@ impl GsdReader {
         }
     }
 
+    /// The bonds of `frame` (`None` without `bonds/N` or with none).
+    fn bonds(&self, frame: u64) -> Result<Option<Bonds>, TrajectoryError> {
+        let count = match self.chunk(frame, "bonds/N")? {
+            Some((e, b)) if e.kind == Kind::U32 as u8 && b.len() == 4 => u64::from(u32s(&b)[0]),
+            Some(_) => return Err(self.bad(frame, "bonds/N is not one uint32".into())),
+            None => 0,
+        };
+        if count == 0 {
+            return Ok(None);
+        }
+        let u32_chunk = |name: &str, m: u32| match self.chunk(frame, name)? {
+            Some((e, b)) if e.kind == Kind::U32 as u8 && e.n == count && e.m == m => Ok(u32s(&b)),
+            _ => Err(self.bad(frame, format!("{name} is not {count} x {m} uint32"))),
+        };
+        let types = match self.chunk(frame, "bonds/types")? {
+            Some((e, b)) if e.m > 0 => names_of(e.m, &b),
+            _ => return Err(self.bad(frame, "has bonds and no bonds/types".into())),
+        };
+        let group = u32_chunk("bonds/group", 2)?;
+        Ok(Some(Bonds {
+            types,
+            typeid: u32_chunk("bonds/typeid", 1)?,
+            group: group.chunks_exact(2).map(|g| [g[0], g[1]]).collect(),
+        }))
+    }
+
     fn bad(&self, frame: u64, message: String) -> TrajectoryError {
         TrajectoryError::Format {
             path: self.path.clone(),
@@ -606,21 +683,12 @@ impl GsdReader {
                 .unwrap_or_else(|| vec![1.0; n as usize]),
         );
         let typeid = match self.chunk(frame, "particles/typeid")? {
-            Some((e, b)) if e.kind == Kind::U32 as u8 && e.n == n => b
-                .chunks_exact(4)
-                .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]]))
-                .collect(),
+            Some((e, b)) if e.kind == Kind::U32 as u8 && e.n == n => u32s(&b),
             Some(_) => return Err(self.bad(frame, format!("particles/typeid is not {n} uint32"))),
             None => vec![0; n as usize],
         };
         let types = match self.chunk(frame, "particles/types")? {
-            Some((e, b)) if e.m > 0 => b
-                .chunks_exact(e.m as usize)
-                .map(|t| {
-                    String::from_utf8_lossy(t.split(|&c| c == 0).next().unwrap_or_default())
-                        .into_owned()
-                })
-                .collect(),
+            Some((e, b)) if e.m > 0 => names_of(e.m, &b),
             _ => vec!["A".to_string()],
         };
         let step = match self.chunk(frame, "configuration/step")? {
@@ -637,6 +705,7 @@ impl GsdReader {
             types,
             masses,
             log: Vec::new(),
+            bonds: self.bonds(frame)?,
         };
         out.check().map_err(|e| self.bad(frame, e.to_string()))?;
         Ok(out)
@@ -659,6 +728,11 @@ mod tests {
             types: vec!["A".into(), "Wall".into()],
             masses: Some(vec![1.0, 2.0]),
             log: vec![("kinetic_temperature".into(), 1.0 + s)],
+            bonds: Some(Bonds {
+                types: vec!["backbone".into()],
+                typeid: vec![0],
+                group: vec![[1, 0]],
+            }),
         }
     }
 
@@ -675,7 +749,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("t.gsd");
         let mut w = GsdWriter::create(&path, &["kinetic_temperature"]).unwrap();
-        // 8 chunks in frame 0 and 6 after: 100 frames pass the 256 initial entries twice.
+        // 12 chunks in frame 0 and 6 after: 100 frames pass the 256 initial entries twice.
         for step in 0..100 {
             w.append(&frame(step)).unwrap();
         }
@@ -694,10 +768,10 @@ mod tests {
                 got.velocities.as_ref().unwrap(),
                 want.velocities.as_ref().unwrap()
             ));
-            // Types and masses are in frame 0 only and read from there.
+            // Types, masses and bonds are in frame 0 only and read from there.
             assert_eq!(
-                (got.typeid, got.types, got.masses),
-                (want.typeid, want.types, want.masses)
+                (got.typeid, got.types, got.masses, got.bonds),
+                (want.typeid, want.types, want.masses, want.bonds)
             );
         }
         let err = r.frame(100).err().unwrap().to_string();
@@ -705,6 +779,39 @@ mod tests {
             err.contains("frame 100 is out of range: the file has 100 frames"),
             "{err}"
         );
+    }
+
+    #[test]
+    fn bonds_change_between_frames_and_bad_ones_are_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("t.gsd");
+        let mut w = GsdWriter::create(&path, &["kinetic_temperature"]).unwrap();
+        let none = Frame {
+            bonds: None,
+            ..frame(1)
+        };
+        w.append(&none).unwrap();
+        w.append(&frame(2)).unwrap();
+        let r = GsdReader::open(&path).unwrap();
+        assert_eq!(
+            (r.frame(0).unwrap().bonds, r.frame(1).unwrap().bonds),
+            (None, frame(2).bonds)
+        );
+        let mut writer = crate::Writer::create(&path, &["kinetic_temperature"]).unwrap();
+        for (typeid, group, message) in [
+            (1, [0, 1], "bond 0: typeid 1 names no bond type"),
+            (0, [1, 1], "bond 0 joins particles 1 and 1"),
+            (0, [0, 2], "bond 0 joins particles 0 and 2"),
+        ] {
+            let mut f = frame(0);
+            f.bonds = Some(Bonds {
+                types: vec!["b".into()],
+                typeid: vec![typeid],
+                group: vec![group],
+            });
+            let e = writer.append(&f).unwrap_err().to_string();
+            assert!(e.contains(message), "{e}");
+        }
     }
 
     #[test]

@@ -12,6 +12,7 @@
 //! is a short documented binary format, so [`gsd`] writes and reads it directly.
 
 pub mod gsd;
+pub mod lammps_data;
 mod text;
 
 use std::path::{Path, PathBuf};
@@ -40,6 +41,20 @@ pub struct Frame {
     pub masses: Option<Vec<f64>>,
     /// Scalar observables of this frame, by name (GSD `log/<name>`, extended XYZ comment keys).
     pub log: Vec<(String, f64)>,
+    /// Bonds between the particles (GSD `bonds/...`, which OVITO draws; not in the text
+    /// formats); `None` leaves them out.
+    pub bonds: Option<Bonds>,
+}
+
+/// The bonds of a frame.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Bonds {
+    /// Bond type names.
+    pub types: Vec<String>,
+    /// Index into `types` of each bond.
+    pub typeid: Vec<u32>,
+    /// The indices of the two particles of each bond.
+    pub group: Vec<[u32; 2]>,
 }
 
 impl Frame {
@@ -85,6 +100,31 @@ impl Frame {
                 "typeid {t} names no type (types: {:?})",
                 self.types
             )));
+        }
+        if let Some(b) = &self.bonds {
+            b.check(n)?;
+        }
+        Ok(())
+    }
+}
+
+impl Bonds {
+    /// Check that every bond has a type that names one and joins two particles of the `n`.
+    fn check(&self, n: usize) -> Result<(), TrajectoryError> {
+        let bad = |message: String| Err(TrajectoryError::Frame(message));
+        if self.typeid.len() != self.group.len() {
+            let (t, g) = (self.typeid.len(), self.group.len());
+            return bad(format!("bonds: {t} type ids for {g} bonds"));
+        }
+        for (k, (&t, &[i, j])) in self.typeid.iter().zip(&self.group).enumerate() {
+            if t as usize >= self.types.len() {
+                return bad(format!("bond {k}: typeid {t} names no bond type"));
+            }
+            if i == j || i as usize >= n || j as usize >= n {
+                return bad(format!(
+                    "bond {k} joins particles {i} and {j}: two different particles of the {n}"
+                ));
+            }
         }
         Ok(())
     }

@@ -133,6 +133,7 @@ mod tests {
             types: vec!["A".into(), "W".into()],
             masses: None,
             log: vec![("kinetic_temperature".into(), 1.25)],
+            bonds: None,
         }
     }
 

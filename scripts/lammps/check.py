@@ -12,7 +12,9 @@ Evidence (each check states its tolerance where it defines it):
 - pair_style dpd/soft: the forces, energy, pressure and per-atom tallies of pair dpd at zero
   friction, on a two-type mixture, on 1 and 2 ranks;
 - tally: ABOBA's `tally evaluation` energy against dpd run of B(1/2) O B(1/2) A;
-- bad input: LAMMPS errors naming the problem, never a crash; exporter refusals.
+- bad input: LAMMPS errors naming the problem, never a crash; exporter refusals;
+- data files: a mixture written by `dpd run --write-data` read by LAMMPS, and LAMMPS's
+  write_data read by `dpd run --init`, in the same state.
 """
 
 import argparse
@@ -666,6 +668,74 @@ def bad_input(args):
         check(out.returncode == 2 and message in out.stderr, f"dpd export lammps {names[0]!r} refused: {message!r}")
 
 
+def frame_zero(args, scene, data, gamma):
+    """`dpd run --init data --gamma gamma`'s first trajectory frame: its logged observables by
+    name."""
+    xyz = os.path.join(args.work, "frame0.xyz")
+    cmd = [args.dpd, "run", "--scene", scene, "--init", data, "--gamma", gamma, "--time", "0.05",
+           "--trajectory", xyz, "--every", "0.05", "--json"]
+    out = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+    if out.returncode != 0:
+        raise SystemExit(f"{' '.join(cmd)} failed: {out.stderr}")
+    with open(xyz) as f:
+        f.readline()
+        comment = f.readline().split()
+    return {k: float(v) for k, v in (w.split("=", 1) for w in comment if "=" in w)
+            if k in ("kinetic_temperature", "potential_energy", "pressure")}
+
+
+def data_files(args):
+    """LAMMPS data files (docs/systems.md): a Groot-Warren mixture of 648 beads, written by
+    `dpd run --write-data` after 20 steps, is read by LAMMPS (pair dpd at zero friction, so
+    that its virial holds the conservative forces only; run 0) with the potential energy per
+    atom, temperature and pressure that `dpd run --init` logs for that state, to 1e-9
+    relative (the same sums in another order); the pressures once LAMMPS's kinetic term
+    2 KE / 3V is replaced by dpd's N k_B T_K / V. LAMMPS's write_data of the state (its own
+    atom order, the friction 0 of the pair coefficients above, the species' names as type
+    labels, which dpd run checks) starts dpd run in the same state."""
+    scene = os.path.join(args.work, "mixture.toml")
+    with open(scene, "w") as f:
+        f.write("box = [6.0, 6.0, 6.0]\ntime = 1.0\n[[species]]\nname = \"A\"\nfraction = 0.5\n"
+                "[[species]]\nname = \"B\"\nfraction = 0.5\n[pairs]\nA-A = { a = 25.0 }\n"
+                "B-B = { a = 25.0 }\nA-B = { a = 40.0 }\n")
+    mine = os.path.join(args.work, "mixture.data")
+    out = subprocess.run([args.dpd, "run", "--scene", scene, "--write-data", mine, "--json"],
+                         capture_output=True, text=True, timeout=300)
+    check(out.returncode == 0, "dpd run --write-data mixture.data")
+    text = f"""
+units lj
+atom_style atomic
+comm_modify vel yes
+pair_style dpd 1.0 1.0 2024
+read_data {mine}
+pair_coeff 1 1 25 0 1
+pair_coeff 1 2 40 0 1
+pair_coeff 2 2 25 0 1
+thermo_style custom step pe press temp
+thermo_modify norm yes format float %.17g
+run 0
+write_data {os.path.join(args.work, "lammps.data")} pair ij
+"""
+    code, output = run_lammps(args, text, 1, "data")
+    lines = output.splitlines()
+    heads = [k for k, l in enumerate(lines) if l.split()[:2] == ["Step", "PotEng"]]
+    check(code == 0 and heads, "LAMMPS reads the data file written by dpd run")
+    if code != 0 or not heads:
+        return
+    pe, press, temp = (float(w) for w in lines[heads[0] + 1].split()[1:4])
+    n, volume = 648, 216.0
+    virial = press - (3 * n - 3) * temp / (3 * volume)
+    close = lambda a, b: abs(a - b) <= 1e-9 * abs(b)
+    for data, gamma in ((mine, "4.5"), (os.path.join(args.work, "lammps.data"), "0")):
+        dpd = frame_zero(args, scene, data, gamma)
+        name = os.path.basename(data)
+        check(close(dpd["potential_energy"], pe) and close(dpd["kinetic_temperature"], temp),
+              f"{name}: dpd U/N {dpd['potential_energy']!r}, T_K {dpd['kinetic_temperature']!r}; "
+              f"LAMMPS {pe!r}, {temp!r}")
+        check(close(dpd["pressure"] - n * temp / volume, virial),
+              f"{name}: virial pressure dpd {dpd['pressure'] - n * temp / volume!r}, LAMMPS {virial!r}")
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__)
     p.add_argument("--lmp", required=True)
@@ -689,7 +759,7 @@ def main():
                    help="temp: measure each --scheme's temp/split against dpd run (by hand)")
     p.add_argument("--shear-time", type=float, default=400.0, help="shear: time units per run")
     p.add_argument("--only", choices=["equilibrium", "repeat", "bad", "shear", "soft", "trotter", "pairs", "restart", "temp",
-                            "tally"],
+                            "tally", "data"],
                    action="append")
     args = p.parse_args()
     args.scheme = args.scheme or [k for k in SCHEMES if k != "dpd_s1"]
@@ -697,7 +767,7 @@ def main():
     os.makedirs(args.work, exist_ok=True)
     parts = {"bad": bad_input, "repeat": repeat_and_momentum, "equilibrium": equilibrium,
              "shear": shear, "soft": soft_pair, "trotter": trotter, "pairs": per_pair,
-             "restart": restart, "temp": temp_split, "tally": tally}
+             "restart": restart, "temp": temp_split, "tally": tally, "data": data_files}
     for name in args.only or ["bad", "repeat", "equilibrium"]:
         parts[name](args)
     if FAILURES:

@@ -76,6 +76,13 @@ pub fn spectrum_of(args: &SpectrumArgs) -> Result<(Spectrum, f64, f64), String> 
             "the scene has {why}: predictions are for the periodic bulk at equilibrium"
         ));
     }
+    if scene.species.species.is_some() || scene.geometry.init.is_some() {
+        return Err(
+            "the scene has [[species]] or init: predictions are for one species of the \
+             scene's a and mass from a random start"
+                .into(),
+        );
+    }
     if !SPECTRUM_PARTICLES.contains(&args.spectrum_particles) {
         return Err(format!(
             "invalid --spectrum-particles = {}: allowed are {} to {}",

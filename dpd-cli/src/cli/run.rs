@@ -7,6 +7,7 @@ use dpd_measure::plot::profile_plot;
 use dpd_measure::scene::{ProfileSpec, TrajectorySpec};
 use dpd_measure::{report, Aggregate, Batch, Control, Job, RunResult, Scene, SceneError};
 use serde::Serialize;
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -26,9 +27,14 @@ pub struct Args {
     /// Time between trajectory frames (with --trajectory)
     #[arg(long, value_name = "T", requires = "trajectory")]
     every: Option<f64>,
-    /// Start from a frame of a GSD file: FILE.gsd (its last frame) or FILE.gsd:K
-    #[arg(long, value_name = "FILE.gsd[:K]")]
+    /// Start from a frame of a GSD file, FILE.gsd (its last frame) or FILE.gsd:K, or from a
+    /// LAMMPS data file, FILE.data
+    #[arg(long, value_name = "FILE.gsd[:K]|FILE.data")]
     init: Option<String>,
+    /// Write each run's last state as a LAMMPS data file (FILE.data); replaces the scene's
+    /// write_data
+    #[arg(long, value_name = "FILE.data")]
+    write_data: Option<PathBuf>,
 }
 
 /// What `dpd run --json` prints: the combined observables of the runs, their details and the
@@ -117,13 +123,16 @@ pub fn main(args: Args) -> ExitCode {
     }
 }
 
-/// `scene` with `--trajectory`/`--every` and `--init` applied, validated.
+/// `scene` with `--trajectory`/`--every`, `--init` and `--write-data` applied, validated.
 fn with_files(mut scene: Scene, args: &Args) -> Result<Scene, SceneError> {
     if let (Some(file), Some(every)) = (&args.trajectory, args.every) {
         scene.output.trajectory = Some(TrajectorySpec::new(file.clone(), every));
     }
     if let Some(init) = &args.init {
         scene.geometry.init = Some(init.clone());
+    }
+    if let Some(file) = &args.write_data {
+        scene.output.write_data = Some(file.clone());
     }
     scene.validate()?;
     Ok(scene)
@@ -177,6 +186,20 @@ fn print_table(r: &RunReport) {
             None => outln!("shear viscosity: too few samples"),
         }
     }
+    for run in r.results {
+        if let Some(like) = &run.like_neighbours {
+            let shown = |f: &Option<f64>| f.map_or("none".into(), |f| format!("{f:.4}"));
+            let each: Vec<String> = like
+                .iter()
+                .map(|(s, f)| format!("{s} {}", shown(f)))
+                .collect();
+            outln!(
+                "seed {}: like neighbours within r_c: {}",
+                run.seed,
+                each.join(", ")
+            );
+        }
+    }
     for run in r.results.iter().filter(|run| !run.stable) {
         outln!(
             "seed {}: {}",
@@ -207,6 +230,25 @@ fn write_profiles(
             profile_plot(rows, spec.axis, &stem.with_extension("svg"))?;
             errln!("wrote {}.csv and .svg", stem.display());
         }
+        if let Some(species) = &r.species_profile {
+            let path = dir.join(format!("species-profile-seed{}.csv", r.seed));
+            std::fs::write(&path, species_csv(spec.axis, species))?;
+            errln!("wrote {}", path.display());
+        }
     }
     Ok(())
+}
+
+/// The species' slab densities as CSV: the axis (`x`, `y` or `z`), then one column per
+/// species.
+fn species_csv(axis: usize, species: &BTreeMap<String, Vec<[f64; 2]>>) -> String {
+    let names: Vec<&str> = species.keys().map(String::as_str).collect();
+    let mut out = format!("{},{}\n", ["x", "y", "z"][axis.min(2)], names.join(","));
+    let slabs = species.values().next().map_or(0, Vec::len);
+    for k in 0..slabs {
+        let mut row = vec![species.values().next().map_or(0.0, |v| v[k][0]).to_string()];
+        row.extend(species.values().map(|v| v[k][1].to_string()));
+        out += &(row.join(",") + "\n");
+    }
+    out
 }

@@ -6,13 +6,18 @@
 //! |---|---|---|
 //! | `thermo.rs` | T_K, T_C, U, P averaged over the window | always |
 //! | `rdf.rs` | g(r) | `[rdf]` |
+//! | `pair_rdf.rs` | g(r) of each pair of species | `[rdf]` with `[[species]]` |
+//! | `neighbours.rs` | the fraction of like neighbours of each species | `like_neighbours` |
 //! | `vacf.rs` | the diffusion coefficient | `[vacf]` |
 //! | `viscosity.rs` | the shear viscosity | a non-zero `shear_rate` |
 //! | `profile.rs` | slab profiles | `[profile]` |
+//! | `species_profile.rs` | slab densities of each species | `[profile]` with `[[species]]` |
 //! | `trajectory.rs` | frames into a file | `[trajectory]` |
+//! | `data_out.rs` | the last state into a LAMMPS data file | `write_data` |
 //! | `energy.rs` | heat and shadow work | `energy_balance` |
 //!
-//! The interface, [`Observer`] and what it is given, is in `interface.rs`. To add an
+//! The interface, [`Observer`] and what it is given, is in `interface.rs`; `typed.rs` visits
+//! the pairs of a state with their particles' types. To add an
 //! observable: write its file with a type implementing [`Observer`] and a `new`
 //! that returns `None` when the scene does not ask for it (its key belongs to a scene section,
 //! usually `crate::scene::observe`), list `new` in [`for_run`], and give [`RunResult`] the
@@ -23,12 +28,17 @@
 //! step, in the averaging window (the last `average_fraction` of the run); observers are
 //! called in the order of [`for_run`].
 
+mod data_out;
 mod energy;
 mod interface;
+mod neighbours;
+mod pair_rdf;
 mod profile;
 mod rdf;
+mod species_profile;
 mod thermo;
 mod trajectory;
+mod typed;
 mod vacf;
 mod viscosity;
 
@@ -41,13 +51,17 @@ type Make = for<'a> fn(&Setup<'a>, &mut System) -> Result<Option<Boxed<'a>>, Par
 
 /// The observers of a run, in the order they are called.
 pub fn for_run<'a>(setup: &Setup<'a>, sys: &mut System) -> Result<Vec<Boxed<'a>>, ParamError> {
-    const MAKE: [Make; 7] = [
+    const MAKE: [Make; 11] = [
         thermo::new,
         rdf::new,
+        pair_rdf::new,
+        neighbours::new,
         vacf::new,
         viscosity::new,
         profile::new,
+        species_profile::new,
         trajectory::new,
+        data_out::new,
         energy::new,
     ];
     let mut observers = Vec::new();

@@ -27,6 +27,8 @@ struct Recorder {
     path: PathBuf,
     /// With the `image` field: the images, which need the positions after every step.
     images: Option<Images>,
+    /// The name of each type.
+    types: Vec<String>,
 }
 
 /// The recorder of `[trajectory]`: creates the file of the run and writes the initial state as
@@ -39,18 +41,20 @@ pub(super) fn new<'a>(
         return Ok(None);
     };
     let runs = setup.scene.run.runs;
-    let recorder = Recorder::start(spec, setup.dt, setup.seed, runs, sys)?;
+    let types = setup.scene.type_names(sys.params().types());
+    let recorder = Recorder::start(spec, setup.dt, (setup.seed, runs), types, sys)?;
     Ok(Some(Box::new(recorder)))
 }
 
 impl Recorder {
     /// Create the file of run `seed` and write the initial state as frame 0. Images count from
     /// this state (also when it comes from `init`).
+    /// `(seed, runs)` name the file; `types` are the type names.
     fn start(
         spec: &TrajectorySpec,
         dt: f64,
-        seed: u64,
-        runs: u64,
+        (seed, runs): (u64, u64),
+        types: Vec<String>,
         sys: &mut System,
     ) -> Result<Recorder, ParamError> {
         let fields = match &spec.fields {
@@ -80,13 +84,14 @@ impl Recorder {
             every_steps: spec.every_steps(dt),
             path,
             images,
+            types,
         };
         r.record(sys)?;
         Ok(r)
     }
 
     fn record(&mut self, sys: &mut System) -> Result<(), ParamError> {
-        let mut f = frame(sys, &self.fields);
+        let mut f = frame(sys, &self.fields, &self.types);
         f.images = self.images.as_ref().map(|i| i.by_id().to_vec());
         self.writer
             .append(&f)
@@ -118,9 +123,10 @@ impl Observer for Recorder {
     fn finish(self: Box<Self>, _: &mut System, _: &End, _: &mut RunResult) {}
 }
 
-/// The system's state as a frame, particles in the order of their ids (the order in which
-/// the system was built; the storage order changes as the system sorts itself).
-fn frame(sys: &mut System, fields: &[Field]) -> Frame {
+/// The system's state as a frame with type names `types`, particles in the order of their
+/// ids (the order in which the system was built; the storage order changes as the system
+/// sorts itself).
+fn frame(sys: &mut System, fields: &[Field], types: &[String]) -> Frame {
     let ids: Vec<usize> = sys.ids().iter().map(|&i| i as usize).collect();
     let in_id_order = |values: &[Vec3], scale: &dyn Fn(usize) -> f64| {
         let mut out = vec![[0.0; 3]; values.len()];
@@ -158,9 +164,6 @@ fn frame(sys: &mut System, fields: &[Field]) -> Frame {
         }
         false => Vec::new(),
     };
-    let types = (0..sys.params().types())
-        .map(|t| type_name(t as u32))
-        .collect();
     Frame {
         step: sys.step(),
         box_lengths: sys.boundary().lengths().into(),
@@ -168,9 +171,10 @@ fn frame(sys: &mut System, fields: &[Field]) -> Frame {
         velocities,
         images: None,
         typeid,
-        types,
+        types: types.to_vec(),
         masses: fields.contains(&Field::Mass).then_some(mass),
         log,
+        bonds: None,
     }
 }
 
@@ -183,14 +187,6 @@ fn configurational_temperature(numerator: f64, denominator: f64) -> f64 {
         numerator / denominator
     } else {
         f64::NAN
-    }
-}
-
-/// Type `t`'s name: A, B, ... Z, then T26, T27, ...
-fn type_name(t: u32) -> String {
-    match char::from_u32(u32::from(b'A') + t) {
-        Some(c) if t < 26 => c.to_string(),
-        _ => format!("T{t}"),
     }
 }
 
@@ -210,7 +206,7 @@ mod tests {
         let mut scene = Scene::default();
         scene.geometry.n = 300;
         let mut sys = scene.system(0.05, 3).unwrap();
-        let logged = |sys: &mut System| frame(sys, &[Field::Observables]).log[1].1;
+        let logged = |sys: &mut System| frame(sys, &[Field::Observables], &[]).log[1].1;
         assert!(thermo(&mut sys).config_denominator <= 0.0);
         assert!(logged(&mut sys).is_nan());
         let aboba = dpd_schemes::registry::resolve("aboba").unwrap();

@@ -1,32 +1,53 @@
 //! The system of a scene: its sections put together into a `dpd_core::System`.
 
 use super::Scene;
+use crate::data_file::same_repulsions;
 use crate::start::{initial_state, InitSpec};
 use dpd_core::init::{freeze_outside, maxwell_momenta, uniform_positions};
-use dpd_core::{ParamError, System, Vec3};
+use dpd_core::{ParamError, Params, System, Vec3};
 
 impl Scene {
-    /// The initial state of run `seed` at time step `dt`: uniform positions, Maxwell momenta
-    /// with the total momentum removed (with `init`, the frame's positions, velocities, masses
-    /// and types instead); with `[walls]`, the particles outside the channel are frozen (and
-    /// their momenta zeroed).
+    /// The initial state of run `seed` at time step `dt`: uniform positions, types by id in
+    /// the order of `[[species]]`, Maxwell momenta with the total momentum removed (with
+    /// `init`, the frame's positions, velocities, masses and types instead, and a data file's
+    /// pair coefficients); with `[walls]`,
+    /// the particles outside the channel are frozen (and their momenta zeroed).
     pub fn system(&self, dt: f64, seed: u64) -> Result<System, ParamError> {
         let (geometry, physics) = (&self.geometry, &self.physics);
         let bx = geometry.periodic_box()?;
         let n = geometry.particles();
-        let params = physics.params()?;
-        let (q, mut p, masses, kinds) = match &geometry.init {
+        let type_masses = self.type_masses();
+        let names = self.species.names();
+        let (state, params) = match &geometry.init {
             Some(init) => {
-                let frame = InitSpec::parse(init)?.read(n, bx.lengths().into())?;
-                initial_state(&frame, physics.mass, params.types())?
+                let lengths = bx.lengths().into();
+                let start = InitSpec::parse(init)?.read(n, lengths, &names, physics.gamma)?;
+                let params = match (start.repulsions, &self.species.species) {
+                    (Some(a), None) => physics.builder().a_matrix(a).build()?,
+                    (Some(a), Some(_)) => {
+                        same_repulsions(&a, &self.species.a_matrix()?, &names)?;
+                        self.params()?
+                    }
+                    (None, _) => self.params()?,
+                };
+                // A data file's pair coefficients may bring types a scene without species
+                // lacks: their particles take the scene's mass where the file has none.
+                let mut masses = type_masses;
+                masses.resize(params.types(), physics.mass);
+                (initial_state(&start.frame, &masses)?, params)
             }
             None => {
-                let masses = vec![physics.mass; n];
+                let kinds = match self.species.species {
+                    Some(_) => self.species.kinds(n)?,
+                    None => vec![0; n],
+                };
+                let masses: Vec<f64> = kinds.iter().map(|&t| type_masses[t as usize]).collect();
                 let q = uniform_positions(&bx, n, seed);
                 let p = maxwell_momenta(&masses, physics.kbt, seed);
-                (q, p, masses, vec![0; n])
+                ((q, p, masses, kinds), self.params()?)
             }
         };
+        let (q, mut p, masses, kinds) = state;
         let mut builder = System::builder(params, bx, q.clone())
             .masses(masses)
             .kinds(kinds)
@@ -45,5 +66,42 @@ impl Scene {
             builder = builder.body_force(Vec3::new(g, 0.0, 0.0));
         }
         builder.momenta(p).build()
+    }
+
+    /// The pair-force parameters: the physics section's, with the species' repulsions.
+    pub fn params(&self) -> Result<Params, ParamError> {
+        match self.species.species {
+            Some(_) => self
+                .physics
+                .builder()
+                .a_matrix(self.species.a_matrix()?)
+                .build(),
+            None => self.physics.params(),
+        }
+    }
+
+    /// The mass of each particle type.
+    pub fn type_masses(&self) -> Vec<f64> {
+        match self.species.species {
+            Some(_) => self.species.masses(self.physics.mass),
+            None => vec![self.physics.mass],
+        }
+    }
+
+    /// The name of each particle type: the species' names, or A, B, ... Z, T26, T27, ...
+    /// for the `types` types of a scene without species.
+    pub fn type_names(&self, types: usize) -> Vec<String> {
+        match self.species.species {
+            Some(_) => self.species.names(),
+            None => (0..types as u32).map(type_name).collect(),
+        }
+    }
+}
+
+/// Type `t`'s name: A, B, ... Z, then T26, T27, ...
+fn type_name(t: u32) -> String {
+    match char::from_u32(u32::from(b'A') + t) {
+        Some(c) if t < 26 => c.to_string(),
+        _ => format!("T{t}"),
     }
 }

@@ -10,9 +10,10 @@
 //! |---|---|---|
 //! | [`RunSpec`] | `run.rs` | `scheme`, `dt`, `time`, `average_fraction`, `sample_interval`, `seed`, `runs`, `threads` |
 //! | [`Physics`] | `physics.rs` | `a`, `gamma`, `kbt`, `mass`, `weight_exponent`, `shear_rate`, `body_force` |
+//! | [`Species`] | `species.rs` | `[[species]]`, `[pairs]` |
 //! | [`Geometry`] | `geometry.rs` | `n`, `density`, `box`, `skin`, `init`, `[walls]` |
-//! | [`Observe`] | `observe.rs` | `[rdf]`, `[vacf]`, `[profile]`, `energy_balance` |
-//! | [`Output`] | `output.rs` | `description`, `[trajectory]` |
+//! | [`Observe`] | `observe.rs` | `[rdf]`, `[vacf]`, `[profile]`, `energy_balance`, `like_neighbours` |
+//! | [`Output`] | `output.rs` | `description`, `[trajectory]`, `write_data` |
 //! | [`SweepSpec`] | `sweep.rs` | `[sweep]` |
 //!
 //! Each section takes its keys out of the parsed table ([`section::take`]); a key no section
@@ -30,6 +31,7 @@ pub mod output;
 pub mod physics;
 pub mod run;
 pub mod section;
+pub mod species;
 pub mod sweep;
 
 pub use check::{MAX_PARTICLES, MAX_STEPS, MAX_THREADS_PER_CORE};
@@ -39,6 +41,7 @@ pub use output::{Field, Output, TrajectorySpec};
 pub use physics::Physics;
 pub use run::RunSpec;
 pub use section::Keys;
+pub use species::{PairSpec, Species, TypeSpec};
 pub use sweep::{Observable, SweepSpec};
 
 use dpd_core::ParamError;
@@ -56,6 +59,8 @@ pub struct Scene {
     pub run: RunSpec,
     #[serde(flatten)]
     pub physics: Physics,
+    #[serde(flatten)]
+    pub species: Species,
     #[serde(flatten)]
     pub geometry: Geometry,
     #[serde(flatten)]
@@ -89,6 +94,7 @@ impl Scene {
             output: take(&mut keys).map_err(error)?,
             run: take(&mut keys).map_err(error)?,
             physics: take(&mut keys).map_err(error)?,
+            species: take(&mut keys).map_err(error)?,
             geometry: take(&mut keys).map_err(error)?,
             observe: take(&mut keys).map_err(error)?,
             sweep: take_table(&mut keys, "sweep").map_err(error)?,
@@ -97,6 +103,7 @@ impl Scene {
             names::<Output>(),
             names::<RunSpec>(),
             names::<Physics>(),
+            names::<Species>(),
             names::<Geometry>(),
             names::<Observe>(),
             &["sweep"],
@@ -141,6 +148,16 @@ impl Scene {
         self.run.validate()?;
         self.physics.validate()?;
         self.geometry.validate()?;
+        let default_a = Physics::default().a;
+        let particles = self.geometry.particles();
+        self.species
+            .validate(particles, self.physics.a, default_a)?;
+        check::require(
+            "like_neighbours",
+            true,
+            !self.observe.like_neighbours || self.species.species.is_some(),
+            "needs [[species]] (with one species every neighbour is like)",
+        )?;
         self.observe.validate(self.geometry.shortest_edge()?)?;
         self.output.validate()?;
         if let Some(w) = &self.sweep {

@@ -5,8 +5,8 @@ use super::check::{positive, require};
 use dpd_core::ParamError;
 use serde::{Deserialize, Serialize};
 
-/// Tables `[rdf]`, `[vacf]`, `[profile]` and the key `energy_balance`; a scene without them
-/// does not pay for them.
+/// Tables `[rdf]`, `[vacf]`, `[profile]` and the keys `energy_balance`, `like_neighbours`; a
+/// scene without them does not pay for them.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Observe {
@@ -17,6 +17,10 @@ pub struct Observe {
     /// O and Ob, at equilibrium; see `dpd_core::observe::EnergyBalance`).
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub energy_balance: bool,
+    /// With `[[species]]`: the fraction of like neighbours within r_c of each species (a pass
+    /// over the pairs at every sample).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub like_neighbours: bool,
 }
 
 /// Radial distribution function accumulated over the averaging window.

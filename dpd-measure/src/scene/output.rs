@@ -1,17 +1,21 @@
-//! The output section: the scene's description and the trajectory `dpd run` writes.
+//! The output section: the scene's description and the files `dpd run` writes (a trajectory,
+//! a data file of the last state).
 
 use dpd_core::ParamError;
 use dpd_trajectory::Format;
 use serde::{Deserialize, Serialize};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
-/// Key `description` and table `[trajectory]`.
+/// Keys `description`, `write_data` and table `[trajectory]`.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Output {
     /// Free text shown in the header.
     pub description: String,
     pub trajectory: Option<TrajectorySpec>,
+    /// Write each run's last state as a LAMMPS data file, `FILE.data` (with several runs,
+    /// `<stem>-seed<seed>.data`).
+    pub write_data: Option<PathBuf>,
 }
 
 /// What a trajectory holds besides positions, box, step and types.
@@ -47,6 +51,15 @@ pub struct TrajectorySpec {
 
 impl Output {
     pub fn validate(&self) -> Result<(), ParamError> {
+        if let Some(file) = &self.write_data {
+            if file.extension().is_none_or(|e| e != "data") {
+                return Err(ParamError::new(
+                    "write_data",
+                    file.display(),
+                    "must be a LAMMPS data file, FILE.data",
+                ));
+            }
+        }
         match &self.trajectory {
             Some(t) => t.validate(),
             None => Ok(()),
@@ -82,13 +95,19 @@ impl TrajectorySpec {
         ((self.every / dt).round() as u64).max(1)
     }
 
-    /// The file of the run with `seed`: `file` itself when the scene has one run.
+    /// The file of the run with `seed`: see [`run_path`].
     pub fn path(&self, seed: u64, runs: u64) -> PathBuf {
-        if runs <= 1 {
-            return self.file.clone();
-        }
-        let stem = self.file.file_stem().unwrap_or_default().to_string_lossy();
-        let ext = self.file.extension().unwrap_or_default().to_string_lossy();
-        self.file.with_file_name(format!("{stem}-seed{seed}.{ext}"))
+        run_path(&self.file, seed, runs)
     }
+}
+
+/// The file of the run with `seed` of `runs`: `file` itself when the scene has one run, else
+/// `<stem>-seed<seed>.<ext>`.
+pub fn run_path(file: &Path, seed: u64, runs: u64) -> PathBuf {
+    if runs <= 1 {
+        return file.to_path_buf();
+    }
+    let stem = file.file_stem().unwrap_or_default().to_string_lossy();
+    let ext = file.extension().unwrap_or_default().to_string_lossy();
+    file.with_file_name(format!("{stem}-seed{seed}.{ext}"))
 }

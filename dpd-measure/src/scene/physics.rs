@@ -2,6 +2,7 @@
 //! equilibrium (shear, body force).
 
 use super::check::{non_negative, positive, require};
+use dpd_core::params::ParamsBuilder;
 use dpd_core::{ParamError, Params};
 use serde::{Deserialize, Serialize};
 
@@ -62,14 +63,18 @@ impl Physics {
         Ok(())
     }
 
-    /// The pair-force parameters.
+    /// The pair-force parameters of one particle type.
     pub fn params(&self) -> Result<Params, ParamError> {
+        self.builder().build()
+    }
+
+    /// The pair-force parameters of one particle type, unvalidated.
+    pub fn builder(&self) -> ParamsBuilder {
         Params::builder()
             .a(self.a)
             .gamma(self.gamma)
             .kbt(self.kbt)
             .weight_exponent(self.weight_exponent)
-            .build()
     }
 
     /// Whether the scene is sheared at a non-zero rate (and so measures the viscosity).

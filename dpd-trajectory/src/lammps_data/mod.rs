@@ -1,0 +1,671 @@
+//! LAMMPS data files (`read_data` / `write_data`): the header counts and box, `Atom Type
+//! Labels`, `Masses`,
+//! `Atoms` in the atom styles atomic, bond, molecular and full, `Velocities`, `Bonds`,
+//! `Angles`, and the coefficient sections `Pair Coeffs`, `PairIJ Coeffs`, `Bond Coeffs`,
+//! `Angle Coeffs` as numbers with the style their comment names (`Pair Coeffs # dpd`). What
+//! the coefficients mean is the reader's business: this module keeps them as written.
+//!
+//! Types and ids count from 1 as in the file. Errors name the line and the section.
+
+use crate::TrajectoryError;
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// The columns of the `Atoms` section.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AtomStyle {
+    /// `id type x y z`
+    Atomic,
+    /// `id molecule type x y z`
+    Bond,
+    /// `id molecule type x y z`
+    Molecular,
+    /// `id molecule type q x y z`
+    Full,
+}
+
+impl AtomStyle {
+    /// The style's name in LAMMPS.
+    pub fn name(self) -> &'static str {
+        match self {
+            AtomStyle::Atomic => "atomic",
+            AtomStyle::Bond => "bond",
+            AtomStyle::Molecular => "molecular",
+            AtomStyle::Full => "full",
+        }
+    }
+
+    fn named(name: &str) -> Option<AtomStyle> {
+        [
+            AtomStyle::Atomic,
+            AtomStyle::Bond,
+            AtomStyle::Molecular,
+            AtomStyle::Full,
+        ]
+        .into_iter()
+        .find(|s| s.name() == name)
+    }
+
+    /// Columns before the image flags.
+    fn columns(self) -> usize {
+        match self {
+            AtomStyle::Atomic => 5,
+            AtomStyle::Bond | AtomStyle::Molecular => 6,
+            AtomStyle::Full => 7,
+        }
+    }
+
+    /// The style a line of `n` columns has (with or without three image flags), where the
+    /// section's comment does not name it: the column counts 5 to 10 are all distinct.
+    fn of_columns(n: usize) -> Option<AtomStyle> {
+        match n {
+            5 | 8 => Some(AtomStyle::Atomic),
+            6 | 9 => Some(AtomStyle::Molecular),
+            7 | 10 => Some(AtomStyle::Full),
+            _ => None,
+        }
+    }
+}
+
+/// One atom of the `Atoms` section, with its velocity.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Atom {
+    pub id: u64,
+    /// Molecule id (not in the atomic style).
+    pub molecule: Option<u64>,
+    /// Atom type, from 1.
+    pub kind: u32,
+    /// Charge (the full style only).
+    pub charge: Option<f64>,
+    pub position: [f64; 3],
+    /// Image flags (0 where the file has none).
+    pub image: [i32; 3],
+    /// From the `Velocities` section.
+    pub velocity: Option<[f64; 3]>,
+}
+
+/// A bond (two atom ids) or an angle (three) with its type, from 1.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Topology<const K: usize> {
+    pub id: u64,
+    pub kind: u32,
+    pub atoms: [u64; K],
+}
+
+/// The numbers of a coefficient section and the style its comment names.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Coeffs<K: Ord> {
+    pub style: Option<String>,
+    pub by_type: BTreeMap<K, Vec<f64>>,
+}
+
+/// A LAMMPS data file, as written.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DataFile {
+    /// The first line.
+    pub title: String,
+    /// `[lo, hi]` along x, y, z (orthogonal boxes only).
+    pub bounds: [[f64; 2]; 3],
+    pub atom_types: u32,
+    pub bond_types: u32,
+    pub angle_types: u32,
+    pub atom_style: AtomStyle,
+    /// Mass of each atom type (index type - 1), `None` where `Masses` gives none.
+    pub masses: Vec<Option<f64>>,
+    /// Name of each atom type (`Atom Type Labels`), or `None` without that section.
+    pub type_labels: Option<Vec<String>>,
+    /// In the order of the file.
+    pub atoms: Vec<Atom>,
+    pub bonds: Vec<Topology<2>>,
+    pub angles: Vec<Topology<3>>,
+    /// By type pair `(i, j)`, `i <= j`: `Pair Coeffs` gives `(i, i)`, `PairIJ Coeffs` any.
+    pub pair_coeffs: Coeffs<(u32, u32)>,
+    pub bond_coeffs: Coeffs<u32>,
+    pub angle_coeffs: Coeffs<u32>,
+}
+
+/// The sections this reader knows.
+const SECTIONS: [&str; 10] = [
+    "Atom Type Labels",
+    "Masses",
+    "Atoms",
+    "Velocities",
+    "Bonds",
+    "Angles",
+    "Pair Coeffs",
+    "PairIJ Coeffs",
+    "Bond Coeffs",
+    "Angle Coeffs",
+];
+
+/// A line of the file: its number (from 1), its text without the comment, and the comment.
+struct Line<'a> {
+    number: usize,
+    text: &'a str,
+    comment: &'a str,
+}
+
+impl DataFile {
+    /// Read `path`.
+    pub fn read(path: &Path) -> Result<DataFile, TrajectoryError> {
+        let text = std::fs::read_to_string(path).map_err(TrajectoryError::io(path))?;
+        DataFile::parse(&text).map_err(|message| TrajectoryError::Format {
+            path: path.to_path_buf(),
+            message,
+        })
+    }
+
+    /// Write it to `path`.
+    pub fn write(&self, path: &Path) -> Result<(), TrajectoryError> {
+        std::fs::write(path, self.to_text()).map_err(TrajectoryError::io(path))
+    }
+
+    /// Parse the text of a data file; the error names the line and section.
+    pub fn parse(text: &str) -> Result<DataFile, String> {
+        let mut lines = text.lines().enumerate().map(|(k, l)| {
+            let (text, comment) = l.split_once('#').unwrap_or((l, ""));
+            Line {
+                number: k + 1,
+                text: text.trim(),
+                comment: comment.trim(),
+            }
+        });
+        let title = lines.next().map_or("", |l| l.text).to_string();
+        let mut lines = lines.filter(|l| !l.text.is_empty()).peekable();
+        let mut file = DataFile {
+            title,
+            bounds: [[0.0; 2]; 3],
+            atom_types: 0,
+            bond_types: 0,
+            angle_types: 0,
+            atom_style: AtomStyle::Atomic,
+            masses: Vec::new(),
+            type_labels: None,
+            atoms: Vec::new(),
+            bonds: Vec::new(),
+            angles: Vec::new(),
+            pair_coeffs: Coeffs::default(),
+            bond_coeffs: Coeffs::default(),
+            angle_coeffs: Coeffs::default(),
+        };
+        let mut counts = Header::default();
+        while let Some(line) = lines.next_if(|l| !is_section(l.text)) {
+            counts.read(&line, &mut file)?;
+        }
+        file.masses = vec![None; file.atom_types as usize];
+        let mut seen = Vec::new();
+        while let Some(head) = lines.next() {
+            let name = head.text;
+            if !SECTIONS.contains(&name) {
+                return Err(format!(
+                    "line {}: section `{name}` is not read here (known: {})",
+                    head.number,
+                    SECTIONS.join(", ")
+                ));
+            }
+            if seen.contains(&name) {
+                return Err(format!(
+                    "line {}: section `{name}` a second time",
+                    head.number
+                ));
+            }
+            seen.push(name);
+            let mut body = Vec::new();
+            while let Some(line) = lines.next_if(|l| !is_section(l.text)) {
+                body.push(line);
+            }
+            let at = |what: &str| format!("section `{name}` (line {}): {what}", head.number);
+            let expected = counts.rows(name, &file);
+            if body.len() != expected {
+                return Err(at(&format!(
+                    "{} lines, the header asks for {expected}",
+                    body.len()
+                )));
+            }
+            file.section(name, head.comment, &body)?;
+        }
+        file.check(&counts)?;
+        Ok(file)
+    }
+
+    /// The text of the file, in the order `write_data` uses; numbers as Rust prints them
+    /// (the shortest text that reads back to the same `f64`).
+    pub fn to_text(&self) -> String {
+        let mut s = String::new();
+        let mut w = |line: String| {
+            s.push_str(&line);
+            s.push('\n');
+        };
+        w(self.title.clone());
+        w(String::new());
+        w(format!("{} atoms", self.atoms.len()));
+        w(format!("{} atom types", self.atom_types));
+        if self.bond_types > 0 || !self.bonds.is_empty() {
+            w(format!("{} bonds", self.bonds.len()));
+            w(format!("{} bond types", self.bond_types));
+        }
+        if self.angle_types > 0 || !self.angles.is_empty() {
+            w(format!("{} angles", self.angles.len()));
+            w(format!("{} angle types", self.angle_types));
+        }
+        for (b, axis) in self.bounds.iter().zip(["x", "y", "z"]) {
+            w(format!("{} {} {axis}lo {axis}hi", b[0], b[1]));
+        }
+        if let Some(labels) = &self.type_labels {
+            w("\nAtom Type Labels\n".into());
+            for (t, label) in labels.iter().enumerate() {
+                w(format!("{} {label}", t + 1));
+            }
+        }
+        if self.masses.iter().any(Option::is_some) {
+            w("\nMasses\n".into());
+            for (t, m) in self.masses.iter().enumerate() {
+                if let Some(m) = m {
+                    w(format!("{} {m}", t + 1));
+                }
+            }
+        }
+        let style = |c: &Option<String>| c.as_ref().map_or(String::new(), |s| format!(" # {s}"));
+        if !self.pair_coeffs.by_type.is_empty() {
+            w(format!(
+                "\nPairIJ Coeffs{}\n",
+                style(&self.pair_coeffs.style)
+            ));
+            for ((i, j), c) in &self.pair_coeffs.by_type {
+                w(format!("{i} {j} {}", joined(c)));
+            }
+        }
+        for (name, coeffs) in [
+            ("Bond Coeffs", &self.bond_coeffs),
+            ("Angle Coeffs", &self.angle_coeffs),
+        ] {
+            if !coeffs.by_type.is_empty() {
+                w(format!("\n{name}{}\n", style(&coeffs.style)));
+                for (t, c) in &coeffs.by_type {
+                    w(format!("{t} {}", joined(c)));
+                }
+            }
+        }
+        w(format!("\nAtoms # {}\n", self.atom_style.name()));
+        for a in &self.atoms {
+            let mut line = a.id.to_string();
+            if let Some(m) = a.molecule {
+                let _ = write!(line, " {m}");
+            }
+            let _ = write!(line, " {}", a.kind);
+            if let Some(q) = a.charge {
+                let _ = write!(line, " {q}");
+            }
+            let [x, y, z] = a.position;
+            let [i, j, k] = a.image;
+            let _ = write!(line, " {x} {y} {z} {i} {j} {k}");
+            w(line);
+        }
+        if self.atoms.iter().any(|a| a.velocity.is_some()) {
+            w("\nVelocities\n".into());
+            for a in &self.atoms {
+                let [x, y, z] = a.velocity.unwrap_or_default();
+                w(format!("{} {x} {y} {z}", a.id));
+            }
+        }
+        if !self.bonds.is_empty() {
+            w("\nBonds\n".into());
+            for b in &self.bonds {
+                w(format!("{} {} {} {}", b.id, b.kind, b.atoms[0], b.atoms[1]));
+            }
+        }
+        if !self.angles.is_empty() {
+            w("\nAngles\n".into());
+            for a in &self.angles {
+                let [i, j, k] = a.atoms;
+                w(format!("{} {} {i} {j} {k}", a.id, a.kind));
+            }
+        }
+        s
+    }
+
+    /// Read the body of section `name` (whose comment is `comment`).
+    fn section(&mut self, name: &str, comment: &str, body: &[Line]) -> Result<(), String> {
+        let style = (!comment.is_empty()).then(|| comment.to_string());
+        match name {
+            "Atom Type Labels" => {
+                let mut labels = vec![String::new(); self.atom_types as usize];
+                for l in body {
+                    let t = type_in(l, 0, self.atom_types, "atom")?;
+                    let words: Vec<&str> = l.text.split_whitespace().collect();
+                    if words.len() != 2 || words[1].starts_with(|c: char| c.is_ascii_digit()) {
+                        return Err(at(
+                            l,
+                            "a type label line is `type label`, the label not a number",
+                        ));
+                    }
+                    labels[t as usize - 1] = words[1].to_string();
+                }
+                self.type_labels = Some(labels);
+            }
+            "Masses" => {
+                for l in body {
+                    let (t, v) = (type_in(l, 0, self.atom_types, "atom")?, floats(l, 1..)?);
+                    if v.len() != 1 || !(v[0].is_finite() && v[0] > 0.0) {
+                        return Err(at(l, "a mass line is `type mass` with mass finite and > 0"));
+                    }
+                    self.masses[t as usize - 1] = Some(v[0]);
+                }
+            }
+            "Atoms" => {
+                if let Some(s) = style.as_deref() {
+                    self.atom_style = AtomStyle::named(s).ok_or_else(|| {
+                        format!(
+                            "section `Atoms`: atom style `{s}` is not read here (atomic, bond, \
+                             molecular, full)"
+                        )
+                    })?;
+                } else if let Some(first) = body.first() {
+                    let n = first.text.split_whitespace().count();
+                    self.atom_style = AtomStyle::of_columns(n).ok_or_else(|| {
+                        at(first, &format!("{n} columns are no atom style read here"))
+                    })?;
+                }
+                let mut ids = std::collections::BTreeSet::new();
+                for l in body {
+                    let atom = self.atom(l)?;
+                    if !ids.insert(atom.id) {
+                        return Err(format!(
+                            "section `Atoms`: atom id {} appears twice",
+                            atom.id
+                        ));
+                    }
+                    self.atoms.push(atom);
+                }
+            }
+            "Velocities" => {
+                let index: BTreeMap<u64, usize> = self
+                    .atoms
+                    .iter()
+                    .enumerate()
+                    .map(|(k, a)| (a.id, k))
+                    .collect();
+                if self.atoms.is_empty() {
+                    return Err("section `Velocities`: comes before `Atoms`".into());
+                }
+                for l in body {
+                    let v = floats(l, 1..)?;
+                    let id = integer(l, 0, "atom id")?;
+                    let k = *index
+                        .get(&id)
+                        .ok_or_else(|| at(l, &format!("atom {id} is not in Atoms")))?;
+                    if v.len() != 3 {
+                        return Err(at(l, "a velocity line is `id vx vy vz`"));
+                    }
+                    self.atoms[k].velocity = Some([v[0], v[1], v[2]]);
+                }
+            }
+            "Bonds" => {
+                for l in body {
+                    let (id, kind, atoms) = self.topology(l, self.bond_types, "bond")?;
+                    self.bonds.push(Topology { id, kind, atoms });
+                }
+            }
+            "Angles" => {
+                for l in body {
+                    let (id, kind, atoms) = self.topology(l, self.angle_types, "angle")?;
+                    self.angles.push(Topology { id, kind, atoms });
+                }
+            }
+            "Pair Coeffs" | "PairIJ Coeffs" => {
+                let both = name == "PairIJ Coeffs";
+                self.pair_coeffs.style = style;
+                for l in body {
+                    let i = type_in(l, 0, self.atom_types, "atom")?;
+                    let j = match both {
+                        true => type_in(l, 1, self.atom_types, "atom")?,
+                        false => i,
+                    };
+                    let pair = (i.min(j), i.max(j));
+                    let c = floats(l, if both { 2.. } else { 1.. })?;
+                    if self.pair_coeffs.by_type.insert(pair, c).is_some() {
+                        return Err(at(
+                            l,
+                            &format!("the pair {} {} a second time", pair.0, pair.1),
+                        ));
+                    }
+                }
+            }
+            _ => {
+                let (types, coeffs, what) = match name {
+                    "Bond Coeffs" => (self.bond_types, &mut self.bond_coeffs, "bond"),
+                    _ => (self.angle_types, &mut self.angle_coeffs, "angle"),
+                };
+                coeffs.style = style;
+                for l in body {
+                    let t = type_in(l, 0, types, what)?;
+                    coeffs.by_type.insert(t, floats(l, 1..)?);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn atom(&self, l: &Line) -> Result<Atom, String> {
+        let style = self.atom_style;
+        let words: Vec<&str> = l.text.split_whitespace().collect();
+        let n = style.columns();
+        if words.len() != n && words.len() != n + 3 {
+            return Err(at(
+                l,
+                &format!(
+                    "{} columns; atom style {} has {n} (or {} with image flags)",
+                    words.len(),
+                    style.name(),
+                    n + 3
+                ),
+            ));
+        }
+        let molecular = style != AtomStyle::Atomic;
+        let kind_column = 1 + usize::from(molecular);
+        let xyz = floats(l, n - 3..n)?;
+        let image = match words.len() > n {
+            true => {
+                let mut image = [0; 3];
+                for (d, w) in words[n..].iter().enumerate() {
+                    image[d] = w
+                        .parse()
+                        .map_err(|_| at(l, &format!("image flag `{w}` is not an integer")))?;
+                }
+                image
+            }
+            false => [0; 3],
+        };
+        Ok(Atom {
+            id: integer(l, 0, "atom id")?,
+            molecule: molecular
+                .then(|| integer(l, 1, "molecule id"))
+                .transpose()?,
+            kind: type_in(l, kind_column, self.atom_types, "atom")?,
+            charge: (style == AtomStyle::Full)
+                .then(|| floats(l, 3..4).map(|q| q[0]))
+                .transpose()?,
+            position: [xyz[0], xyz[1], xyz[2]],
+            image,
+            velocity: None,
+        })
+    }
+
+    fn topology<const K: usize>(
+        &self,
+        l: &Line,
+        types: u32,
+        what: &str,
+    ) -> Result<(u64, u32, [u64; K]), String> {
+        let words = l.text.split_whitespace().count();
+        if words != K + 2 {
+            return Err(at(
+                l,
+                &format!("a {what} line is `id type` and {K} atom ids"),
+            ));
+        }
+        let mut atoms = [0; K];
+        for (k, a) in atoms.iter_mut().enumerate() {
+            *a = integer(l, k + 2, "atom id")?;
+        }
+        Ok((integer(l, 0, "id")?, type_in(l, 1, types, what)?, atoms))
+    }
+
+    /// Checks across sections: bonds and angles between distinct existing atoms, every atom
+    /// with a velocity once any has one.
+    fn check(&self, counts: &Header) -> Result<(), String> {
+        let ids: std::collections::BTreeSet<u64> = self.atoms.iter().map(|a| a.id).collect();
+        if counts.atoms > 0 && self.atoms.is_empty() {
+            return Err(format!(
+                "the header has {} atoms and no `Atoms` section",
+                counts.atoms
+            ));
+        }
+        let bonded = self.bonds.iter().map(|b| (b.id, &b.atoms[..], "Bonds"));
+        let angled = self.angles.iter().map(|a| (a.id, &a.atoms[..], "Angles"));
+        for (id, atoms, section) in bonded.chain(angled) {
+            if let Some(a) = atoms.iter().find(|a| !ids.contains(a)) {
+                return Err(format!(
+                    "section `{section}`: {id} names atom {a}, which is not in Atoms"
+                ));
+            }
+            let mut sorted = atoms.to_vec();
+            sorted.sort_unstable();
+            sorted.dedup();
+            if sorted.len() < atoms.len() {
+                return Err(format!(
+                    "section `{section}`: {id} names one atom twice: {atoms:?}"
+                ));
+            }
+        }
+        if self.atoms.iter().any(|a| a.velocity.is_some())
+            && self.atoms.iter().any(|a| a.velocity.is_none())
+        {
+            return Err("section `Velocities`: gives some atoms no velocity".into());
+        }
+        Ok(())
+    }
+}
+
+/// The header's counts.
+#[derive(Default)]
+struct Header {
+    atoms: usize,
+    bonds: usize,
+    angles: usize,
+}
+
+impl Header {
+    /// Read one header line into the counts and `file`.
+    fn read(&mut self, l: &Line, file: &mut DataFile) -> Result<(), String> {
+        let words: Vec<&str> = l.text.split_whitespace().collect();
+        let count = || integer(l, 0, "count");
+        match words[..] {
+            [_, "atoms"] => self.atoms = count()? as usize,
+            [_, "bonds"] => self.bonds = count()? as usize,
+            [_, "angles"] => self.angles = count()? as usize,
+            [_, "atom", "types"] => file.atom_types = count()? as u32,
+            [_, "bond", "types"] => file.bond_types = count()? as u32,
+            [_, "angle", "types"] => file.angle_types = count()? as u32,
+            [_, "dihedrals" | "impropers"] | [_, "dihedral" | "improper", "types"] => {
+                if count()? > 0 {
+                    return Err(at(l, "dihedrals and impropers are not read here"));
+                }
+            }
+            [_, _, lo, hi] if lo.ends_with("lo") && hi.ends_with("hi") && lo[..1] == hi[..1] => {
+                let d = ["x", "y", "z"]
+                    .iter()
+                    .position(|a| lo.strip_suffix("lo") == Some(a))
+                    .ok_or_else(|| at(l, "unknown box bounds"))?;
+                let b = floats(l, 0..2)?; // finite
+                if b[0] >= b[1] {
+                    return Err(at(l, "a box bound needs lo < hi"));
+                }
+                file.bounds[d] = [b[0], b[1]];
+            }
+            [_, _, _, "xy", "xz", "yz"] => return Err(at(l, "triclinic boxes are not read here")),
+            _ => {
+                return Err(at(
+                    l,
+                    "is no header line read here (counts, types, box bounds)",
+                ))
+            }
+        }
+        Ok(())
+    }
+
+    /// Lines section `name` must have.
+    fn rows(&self, name: &str, file: &DataFile) -> usize {
+        match name {
+            "Atoms" | "Velocities" => self.atoms,
+            "Bonds" => self.bonds,
+            "Angles" => self.angles,
+            "Atom Type Labels" | "Masses" | "Pair Coeffs" => file.atom_types as usize,
+            "PairIJ Coeffs" => {
+                let t = file.atom_types as usize;
+                t * (t + 1) / 2
+            }
+            "Bond Coeffs" => file.bond_types as usize,
+            _ => file.angle_types as usize,
+        }
+    }
+}
+
+/// A section's heading: a line that begins with a letter (data lines begin with numbers).
+fn is_section(text: &str) -> bool {
+    text.starts_with(|c: char| c.is_ascii_alphabetic())
+}
+
+fn at(l: &Line, what: &str) -> String {
+    format!("line {}: {what}: `{}`", l.number, l.text)
+}
+
+/// The numbers of `l` in the columns `range`.
+fn floats(l: &Line, range: impl std::ops::RangeBounds<usize>) -> Result<Vec<f64>, String> {
+    let words: Vec<&str> = l.text.split_whitespace().collect();
+    let (lo, hi) = (
+        match range.start_bound() {
+            std::ops::Bound::Included(&s) => s,
+            _ => 0,
+        },
+        match range.end_bound() {
+            std::ops::Bound::Excluded(&e) => e,
+            _ => words.len(),
+        },
+    );
+    let cells = words.get(lo..hi).ok_or_else(|| at(l, "too few columns"))?;
+    cells
+        .iter()
+        .map(|w| match w.parse::<f64>() {
+            Ok(x) if x.is_finite() => Ok(x),
+            _ => Err(at(l, &format!("`{w}` is not a finite number"))),
+        })
+        .collect()
+}
+
+fn integer(l: &Line, column: usize, what: &str) -> Result<u64, String> {
+    let w = l.text.split_whitespace().nth(column).unwrap_or("");
+    w.parse()
+        .map_err(|_| at(l, &format!("{what} `{w}` is not a whole number >= 0")))
+}
+
+/// The type in `column` of `l`, checked to be 1 to `types`.
+fn type_in(l: &Line, column: usize, types: u32, what: &str) -> Result<u32, String> {
+    let t = integer(l, column, &format!("{what} type"))?;
+    if t == 0 || t > u64::from(types) {
+        return Err(at(
+            l,
+            &format!("{what} type {t} is not in 1 to {types} (the header's {what} types)"),
+        ));
+    }
+    Ok(t as u32)
+}
+
+fn joined(values: &[f64]) -> String {
+    let words: Vec<String> = values.iter().map(f64::to_string).collect();
+    words.join(" ")
+}
+
+#[cfg(test)]
+mod tests;
