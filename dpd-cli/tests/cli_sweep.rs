@@ -69,6 +69,25 @@ fn sweep_writes_points_and_summary_and_resumes() {
 }
 
 /// The results file `out.json` in `dir`, after checking that `out` succeeded.
+#[test]
+fn a_results_file_that_cannot_be_saved_is_reported_after_each_point() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = write(dir.path(), "tiny.toml", TINY);
+    let json = dir.path().join("missing-dir").join("out.json");
+    let out = aboba_sweep(
+        dir.path(),
+        &scene,
+        ["0.05", "0.05"],
+        &["--json", json.to_str().unwrap()],
+    );
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    // One point (aboba at dt 0.05, one seed), saved after it ran and once more at the end.
+    let warnings = stderr.matches("warning: cannot write").count();
+    assert_eq!(warnings, 1, "{stderr}");
+    assert!(!out.status.success(), "{stderr}");
+    assert!(stderr.contains("missing-dir"), "{stderr}");
+}
+
 fn results(dir: &Path, out: &Output) -> serde_json::Value {
     assert!(
         out.status.success(),

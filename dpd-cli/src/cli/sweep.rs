@@ -115,11 +115,9 @@ pub fn measure(
     let bar = progress::bar(total, format!("{} points", pending.len()));
     let save = |r: &SweepResults| {
         bar.set_message(format!("{} of {planned} points", r.points.len()));
+        // Not `bar.println`, which prints nothing where stderr is not a terminal.
         if let Err(e) = r.write_json(json) {
-            bar.println(format!(
-                "dpd: warning: cannot write {}: {e}",
-                json.display()
-            ));
+            bar.suspend(|| errln!("dpd: warning: cannot write {}: {e}", json.display()));
         }
     };
     let hooks = Hooks {
