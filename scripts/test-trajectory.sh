@@ -1,16 +1,19 @@
 #!/usr/bin/env bash
-# Trajectory files read back by the field's own readers (issue 27): `dpd run` writes GSD, extended
-# XYZ and LAMMPS dump text; the `gsd` package reads every GSD frame (N, box, step, positions,
-# velocities), ASE reads the extended XYZ and the LAMMPS dump and must agree with it to the
-# precision of GSD's f32; a run killed with SIGKILL mid-way leaves a GSD file that gsd reads
-# whole; `--init` restarts from a frame. The readers live in a virtual environment under
+# Trajectory files read back by the field's own readers (issues 27 and 48): `dpd run` writes GSD,
+# extended XYZ and LAMMPS dump text; the `gsd` package reads every GSD frame (N, box, step, time,
+# dt, positions, velocities, images), ASE and MDAnalysis read the extended XYZ and the LAMMPS
+# dump (positions, type names, velocities, time) and must agree with GSD to the precision of its
+# f32; MDAnalysis reads the GSD file too; a run killed with SIGKILL mid-way leaves a GSD file that
+# gsd reads whole; `--init` continues a frame's step, time and images (`--init-reset` starts
+# them at 0). The readers live in a virtual environment under
 # ${DPD_TEST_CACHE:-$HOME/.cache/dpd-test}/trajectory (reused if present).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 venv="${DPD_TEST_CACHE:-$HOME/.cache/dpd-test}/trajectory"
-if [ ! -x "$venv/bin/python" ] || ! "$venv/bin/python" -c "import gsd.hoomd, ase" 2>/dev/null; then
+if [ ! -x "$venv/bin/python" ] || ! "$venv/bin/python" -c "import gsd.hoomd, ase, MDAnalysis" \
+        2>/dev/null; then
     python3 -m venv "$venv"
-    "$venv/bin/pip" install --quiet gsd==5.0.1 ase==3.29.0
+    "$venv/bin/pip" install --quiet gsd==5.0.1 ase==3.29.0 MDAnalysis==2.11.0
 fi
 # The binary `cargo test --workspace` built (optimised test profile); built here only if absent.
 [ -x target/debug/dpd ] || cargo build --quiet -p dpd-cli
@@ -25,9 +28,12 @@ for file in t.gsd t.xyz t.lammpstrj; do
 done
 # The same run with a frame every step, to check the images against each step's displacement.
 "$dpd" "${run[@]}" --trajectory steps.gsd --every 0.05 >/dev/null 2>&1
-# Frame 2 (step 20) as the start of a 10-step run whose first frame must be that state.
+# Frame 2 (step 20) as the start of a 10-step run whose first frame must be that state, with
+# the frame's step, time and images; and again with the counters reset.
 "$dpd" run --n 300 --time 0.5 --dt 0.05 --init t.gsd:2 --trajectory init.gsd --every 0.5 \
     >/dev/null 2>&1
+"$dpd" run --n 300 --time 0.5 --dt 0.05 --init t.gsd:2 --init-reset --trajectory reset.gsd \
+    --every 0.5 >/dev/null 2>&1
 # Errors name what is wrong: frame out of range, missing file, particle count.
 expect_error() {
     if "$dpd" "$@" >/dev/null 2>err.txt; then
@@ -60,14 +66,15 @@ assert len(frames) == 5, len(frames)
 L = 300 / 3.0
 for k, f in enumerate(frames):
     assert f.configuration.step == 10 * k, f.configuration.step
+    assert f.log["dt"].item() == 0.05 and abs(f.log["time"].item() - 0.5 * k) < 1e-12, f.log
     assert f.particles.N == 300
     box = f.configuration.box
     assert np.allclose(box[:3], L ** (1 / 3), rtol=1e-6) and not box[3:].any(), box
     half = box[:3] / 2
     assert (f.particles.position >= -half).all() and (f.particles.position < half).all()
     assert f.particles.types == ["A"] and (f.particles.typeid == 0).all()
-    assert sorted(f.log) == ["configurational_temperature", "kinetic_temperature",
-                             "potential_energy", "pressure"], f.log
+    assert sorted(f.log) == ["configurational_temperature", "dt", "kinetic_temperature",
+                             "potential_energy", "pressure", "time"], f.log
     logs = dict(f.log)
     t_c = logs.pop("configurational_temperature")
     assert all(np.isfinite(v).all() for v in logs.values()), f.log
@@ -87,6 +94,33 @@ for name, fmt in [("t.xyz", "extxyz"), ("t.lammpstrj", "lammps-dump-text")]:
         assert np.allclose(a.cell.lengths(), f.configuration.box[:3], rtol=1e-6)
         centred = a.get_positions() - f.configuration.box[:3] / 2
         assert np.abs(centred - f.particles.position).max() < 1e-5, name
+# The extended XYZ's time, dt, masses and velocities as ASE reads them (get_velocities is
+# momenta / masses: with no masses column it divides by hydrogen's 1.008).
+for a, f in zip(ase.io.read("t.xyz", index=":"), frames):
+    assert (a.info["step"], a.info["time"], a.info["dt"]) == (
+        f.configuration.step, f.log["time"].item(), f.log["dt"].item()), a.info
+    assert (a.get_masses() == 1.0).all()
+    assert np.abs(a.get_velocities() - f.particles.velocity).max() < 1e-5
+
+# MDAnalysis: the type name and the positions of the extended XYZ (its plain-XYZ reader takes
+# the first four columns), the dump's positions, velocities and time (step x the dt it is
+# given), the GSD positions and step.
+import MDAnalysis as mda
+import warnings
+warnings.simplefilter("ignore")  # MDAnalysis warns of the masses it guesses from type names
+xyz = mda.Universe("t.xyz")
+dump = mda.Universe("t.lammpstrj", format="LAMMPSDUMP", dt=0.05)
+hoomd = mda.Universe("t.gsd")
+assert len(xyz.trajectory) == len(dump.trajectory) == len(hoomd.trajectory) == 5
+assert set(xyz.atoms.names) == {"A"}
+for f, _, _, _ in zip(frames, xyz.trajectory, dump.trajectory, hoomd.trajectory):
+    half = f.configuration.box[:3] / 2
+    assert np.abs(xyz.atoms.positions - half - f.particles.position).max() < 1e-4
+    assert np.abs(dump.atoms.positions - half - f.particles.position).max() < 1e-4
+    assert np.abs(dump.atoms.velocities - f.particles.velocity).max() < 1e-5
+    assert abs(dump.trajectory.ts.time - f.log["time"].item()) < 1e-9, dump.trajectory.ts.time
+    assert np.abs(hoomd.atoms.positions - f.particles.position).max() < 1e-6
+    assert hoomd.trajectory.ts.data["step"] == f.configuration.step
 
 # Images: between two steps a particle moves much less than half an edge, so its displacement
 # is the minimum image of the change of its wrapped position; the images must turn the wrapped
@@ -107,17 +141,25 @@ for f in frames:
     assert (f.particles.image == steps[f.configuration.step].particles.image).all()
 
 with gsd.hoomd.open("init.gsd") as t:
-    start = t[0]
-assert start.configuration.step == 0
+    start, end = t[0], t[-1]
+assert (start.configuration.step, end.configuration.step) == (20, 30)
+assert abs(start.log["time"].item() - 1.0) < 1e-12 and abs(end.log["time"].item() - 1.5) < 1e-12
+assert (start.particles.image == frames[2].particles.image).all()
 assert np.abs(start.particles.position - frames[2].particles.position).max() < 1e-5
 assert np.abs(start.particles.velocity - frames[2].particles.velocity).max() < 1e-5
+with gsd.hoomd.open("reset.gsd") as t:
+    reset = t[0]
+assert (reset.configuration.step, reset.log["time"].item()) == (0, 0.0)
+assert not reset.particles.image.any()
+assert np.abs(reset.particles.position - frames[2].particles.position).max() < 1e-5
 
 with gsd.hoomd.open("killed.gsd") as t:
     n = len(t)
     assert n >= 2, n
     for f in t:
         assert f.particles.N == 1500 and np.isfinite(f.particles.position).all()
-print(f"trajectory readers: 5 frames each of GSD, extended XYZ and LAMMPS dump agree; "
-      f"images follow {crossed} face crossings in 40 steps; --init continues frame 2; "
+print(f"trajectory readers: 5 frames each of GSD, extended XYZ and LAMMPS dump agree in gsd, "
+      f"ASE and MDAnalysis; images follow {crossed} face crossings in 40 steps; --init "
+      f"continues frame 2's step, time and images, --init-reset restarts them; "
       f"the killed run's {n} frames read back")
 PY

@@ -179,3 +179,47 @@ fn a_mixture_prints_its_like_neighbours_and_writes_its_species_profile() {
     let lines: Vec<&str> = csv.lines().collect();
     assert_eq!((lines[0], lines.len()), ("z,A,W", 4), "{csv}");
 }
+
+#[test]
+fn observables_are_switched_on_by_flags_as_by_tables() {
+    // `--rdf ... --vacf-max-lag` give what the scene's [rdf] and [vacf] tables give, and a
+    // flag's key overrides the table's. At n = 100 the box edge is 3.2: r_max must be <= 1.6.
+    let dir = tempfile::tempdir().unwrap();
+    let plain = write(dir.path(), "tiny.toml", TINY);
+    let tables = write(
+        dir.path(),
+        "tables.toml",
+        &format!("{TINY}[rdf]\nr_max = 1.5\nbins = 30\n[vacf]\nmax_lag = 0.2\n"),
+    );
+    let run = |scene: &str, flags: &[&str]| {
+        let mut args = vec!["run", "--scene", scene, "--json"];
+        args.extend(flags);
+        json(&dpd(dir.path(), &args))
+    };
+    let flags = [
+        "--rdf",
+        "--rdf-r-max",
+        "1.5",
+        "--rdf-bins",
+        "20",
+        "--vacf-max-lag",
+        "0.2",
+    ];
+    let by_flags = run(&plain, &flags);
+    let by_tables = run(&tables, &["--rdf-bins", "20"]);
+    let rdf = by_flags["results"][0]["rdf"].as_array().unwrap();
+    assert_eq!(rdf.len(), 20);
+    assert_eq!(by_flags["scene"]["rdf"], by_tables["scene"]["rdf"]);
+    assert_eq!(
+        by_flags["results"][0]["rdf"],
+        by_tables["results"][0]["rdf"]
+    );
+    assert!(by_flags["diffusion"].as_f64().unwrap() > 0.0, "{by_flags}");
+    assert_eq!(by_flags["diffusion"], by_tables["diffusion"]);
+    assert!(run(&plain, &[])["results"][0].get("rdf").is_none());
+    let out = dpd(dir.path(), &["run", "--scene", &plain, "--rdf-r-max", "9"]);
+    refused(&out, "rdf.r_max");
+    let out = dpd(dir.path(), &["run", "--scene", &plain, "--init-reset"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--init"));
+}

@@ -42,7 +42,10 @@ pub fn frame_of(data: &DataFile) -> Result<Frame, String> {
     };
     let velocities = atoms.iter().map(|a| a.velocity).collect::<Option<Vec<_>>>();
     Ok(Frame {
+        // A data file holds no step or time: a run from it counts them from 0.
         step: 0,
+        time: 0.0,
+        dt: 0.0,
         box_lengths: lengths,
         positions: atoms.iter().map(|a| wrapped(a)).collect(),
         velocities,

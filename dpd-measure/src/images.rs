@@ -20,10 +20,10 @@ pub struct Images {
 }
 
 impl Images {
-    /// Start from the system's current positions with every image 0. Lees-Edwards boundaries
-    /// are refused: a particle crossing the sliding faces also moves by the boundaries' offset
-    /// along x, which an image count cannot express.
-    pub fn start(sys: &System) -> Result<Images, ParamError> {
+    /// Start from the system's current positions with the images `initial` (by id; `None`:
+    /// every image 0). Lees-Edwards boundaries are refused: a particle crossing the sliding
+    /// faces also moves by the boundaries' offset along x, which an image count cannot express.
+    pub fn start(sys: &System, initial: Option<&[[i32; 3]]>) -> Result<Images, ParamError> {
         if let Some(le) = sys.shear() {
             return Err(ParamError::new(
                 "trajectory.fields",
@@ -40,10 +40,18 @@ impl Images {
         for (q, &id) in sys.positions().iter().zip(sys.ids()) {
             last[id as usize] = *q;
         }
-        Ok(Images {
-            last,
-            image: vec![[0; 3]; n],
-        })
+        let image = match initial {
+            Some(images) if images.len() == n => images.to_vec(),
+            Some(images) => {
+                return Err(ParamError::new(
+                    "init",
+                    format!("{} images", images.len()),
+                    format!("the frame's images must be one per particle ({n})"),
+                ))
+            }
+            None => vec![[0; 3]; n],
+        };
+        Ok(Images { last, image })
     }
 
     /// Count the crossings of the step just taken.
@@ -104,7 +112,7 @@ mod tests {
             v
         };
         let start = by_id(&sys);
-        let mut images = Images::start(&sys).unwrap();
+        let mut images = Images::start(&sys, None).unwrap();
         let (h, steps) = (0.1, 400);
         for _ in 0..steps {
             drift(&mut sys, h);
@@ -131,7 +139,7 @@ mod tests {
 
     #[test]
     fn lees_edwards_boundaries_are_refused_with_the_reason() {
-        let e = Images::start(&free_particles(Some(0.2))).unwrap_err();
+        let e = Images::start(&free_particles(Some(0.2)), None).unwrap_err();
         assert!(e.to_string().contains("Lees-Edwards"), "{e}");
     }
 }

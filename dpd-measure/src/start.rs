@@ -1,5 +1,6 @@
 //! Runs started from a frame of a GSD file (`init = "FILE.gsd[:frame]"`) or from a LAMMPS data
-//! file (`init = "FILE.data"`), read by the `dpd-trajectory` crate (`--init`).
+//! file (`init = "FILE.data"`), read by the `dpd-trajectory` crate (`--init`),
+//! and where their trajectories' counters start.
 
 use crate::data_file::{frame_of, repulsions};
 use dpd_core::{ParamError, Vec3};
@@ -128,6 +129,34 @@ impl InitSpec {
         };
         let f = reader.frame(k).map_err(|e| bad(e.to_string()))?;
         Ok((f, k))
+    }
+}
+
+/// Where a run's counters start, as HOOMD continues them from a GSD frame: the step, the
+/// simulation time and the periodic images (by particle id) of its first frame. The system
+/// itself counts its steps from 0 (its noise, sampling and run length do not depend on where
+/// the trajectory started); the files show `origin.step + step`.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Origin {
+    pub step: u64,
+    pub time: f64,
+    pub images: Option<Vec<[i32; 3]>>,
+}
+
+impl Origin {
+    /// The origin of a run started from `init` (a frame of a GSD file) at time step `dt`: the
+    /// frame's step, time and images. A file without `log/time` and `log/dt` (written by
+    /// another program) gives the time step x `dt`; one without images, images 0.
+    pub fn of_frame(f: &Frame, dt: f64) -> Origin {
+        Origin {
+            step: f.step,
+            time: if f.dt > 0.0 {
+                f.time
+            } else {
+                f.step as f64 * dt
+            },
+            images: f.images.clone(),
+        }
     }
 }
 

@@ -84,6 +84,10 @@ const PARTICLES: [&str; 7] = [
 /// The bond chunks, after the particles'.
 const BONDS: [&str; 4] = ["bonds/N", "bonds/group", "bonds/typeid", "bonds/types"];
 
+/// The `log/` scalars every frame carries: its time step and simulation time, which the HOOMD
+/// schema leaves to the application (`configuration/step` is the step alone).
+const TIME_LOGS: [&str; 2] = ["dt", "time"];
+
 /// One index entry: where a chunk of a frame is and what it holds.
 #[derive(Clone, Copy, Debug)]
 struct Entry {
@@ -183,7 +187,11 @@ impl GsdWriter {
     /// Create (or truncate) `path`; `log_names` are the `log/<name>` scalars frames may carry.
     pub fn create(path: &Path, log_names: &[&str]) -> Result<GsdWriter, TrajectoryError> {
         let mut names: Vec<String> = CONFIGURATION.iter().map(|s| s.to_string()).collect();
-        let mut logs: Vec<String> = log_names.iter().map(|s| format!("log/{s}")).collect();
+        let mut logs: Vec<String> = TIME_LOGS
+            .iter()
+            .chain(log_names)
+            .map(|s| format!("log/{s}"))
+            .collect();
         logs.sort();
         logs.dedup();
         names.extend(logs);
@@ -270,7 +278,11 @@ impl GsdWriter {
             1,
             f.step.to_le_bytes().to_vec(),
         )?;
-        for (name, value) in &f.log {
+        let times = [("dt", f.dt), ("time", f.time)];
+        let logs = times
+            .into_iter()
+            .chain(f.log.iter().map(|(n, v)| (n.as_str(), *v)));
+        for (name, value) in logs {
             add(
                 &format!("log/{name}"),
                 Kind::F64,
@@ -627,7 +639,8 @@ impl GsdReader {
 
     /// Frame `frame` (counted from 0) with positions wrapped into `[0, L)`. Chunks missing from
     /// the frame come from frame 0; missing there too, velocities are zero, type ids 0 (type
-    /// "A") and masses 1.
+    /// "A"), masses 1, images `None`, `dt` 0 (unknown: a file of another program) and `time`
+    /// step x dt.
     pub fn frame(&self, frame: u64) -> Result<Frame, TrajectoryError> {
         if frame >= self.frames {
             return Err(TrajectoryError::Format {
@@ -695,12 +708,32 @@ impl GsdReader {
             Some((_, b)) if b.len() == 8 => u64::from_le_bytes(b.try_into().unwrap_or_default()),
             _ => 0,
         };
+        let images = match self.chunk(frame, "particles/image")? {
+            Some((e, b)) if e.kind == Kind::I32 as u8 && e.n == n && e.m == 3 => Some(
+                b.chunks_exact(12)
+                    .map(|c| {
+                        std::array::from_fn(|k| {
+                            i32::from_le_bytes([c[4 * k], c[4 * k + 1], c[4 * k + 2], c[4 * k + 3]])
+                        })
+                    })
+                    .collect(),
+            ),
+            Some(_) => return Err(self.bad(frame, format!("particles/image is not {n} x 3 int32"))),
+            None => None,
+        };
+        let scalar = |name: &str| -> Result<Option<f64>, TrajectoryError> {
+            Ok(self.floats(frame, name, 1, 1)?.map(|v| v[0]))
+        };
+        let dt = scalar("log/dt")?.unwrap_or(0.0);
+        let time = scalar("log/time")?.unwrap_or(step as f64 * dt);
         let out = Frame {
             step,
+            time,
+            dt,
             box_lengths,
             positions,
             velocities,
-            images: None,
+            images,
             typeid,
             types,
             masses,
@@ -720,6 +753,8 @@ mod tests {
         let s = step as f64;
         Frame {
             step,
+            time: 10.0 + 0.5 * s,
+            dt: 0.5,
             box_lengths: [4.0, 5.0, 6.0],
             positions: vec![[0.25 + 0.01 * s, 4.75, 3.0], [3.5, 0.0, 5.9]],
             velocities: Some(vec![[1.0, -2.0, s], [0.5, 0.25, -0.125]]),
@@ -757,8 +792,9 @@ mod tests {
         assert_eq!(r.frames(), 100);
         for step in [0, 31, 99] {
             let (got, want) = (r.frame(step).unwrap(), frame(step));
-            assert_eq!(got.step, step);
+            assert_eq!((got.step, got.time, got.dt), (step, want.time, want.dt));
             assert_eq!(got.box_lengths, want.box_lengths);
+            assert_eq!(got.images, want.images);
             assert!(
                 close(&got.positions, &want.positions),
                 "{:?}",
@@ -846,6 +882,18 @@ mod tests {
             err.contains("log/kinetic_temperature was not among the log names"),
             "{err}"
         );
+    }
+
+    #[test]
+    fn time_and_dt_are_not_log_names_of_their_own() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut w = crate::Writer::create(&dir.path().join("t.gsd"), &["time"]).unwrap();
+        let f = Frame {
+            log: vec![("time".into(), 1.0)],
+            ..frame(0)
+        };
+        let err = w.append(&f).err().unwrap();
+        assert!(err.to_string().contains("\"time\" is reserved"), "{err}");
     }
 
     #[test]

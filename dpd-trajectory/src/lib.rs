@@ -24,6 +24,11 @@ use thiserror::Error;
 pub struct Frame {
     /// Time step number.
     pub step: u64,
+    /// Simulation time of this frame, in reduced time units (GSD `log/time`, the extended XYZ's
+    /// `time=`; a LAMMPS dump has the step only).
+    pub time: f64,
+    /// The time step the run used (GSD `log/dt`, the extended XYZ's `dt=`).
+    pub dt: f64,
     /// Box edges `[L_x, L_y, L_z]` in units of r_c.
     pub box_lengths: [f64; 3],
     /// Positions in `[0, L)`, units of r_c.
@@ -90,6 +95,11 @@ impl Frame {
                     "{what} has {len} entries for {n} particles"
                 )));
             }
+        }
+        if let Some((name, _)) = self.log.iter().find(|(n, _)| n == "time" || n == "dt") {
+            return Err(TrajectoryError::Frame(format!(
+                "log name {name:?} is reserved: every frame carries its time and dt"
+            )));
         }
         if let Some(t) = self
             .typeid

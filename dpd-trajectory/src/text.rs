@@ -37,37 +37,51 @@ impl TextWriter {
 }
 
 /// One extended-XYZ block: the count, a comment line of `key=value` pairs (`Lattice`,
-/// `Properties`, `pbc`, `step` and the log values), then a line per particle.
+/// `Properties`, `pbc`, `step`, `time`, `dt` and the log values), then a line per particle.
+///
+/// The columns are named for their readers: `species` (the type name: OVITO's particle type,
+/// MDAnalysis's atom name) and `pos` come first, as plain-XYZ readers such as MDAnalysis take
+/// the name and the next three numbers; `velo` and `mass` are OVITO's names for velocity and
+/// mass; `momenta` and `masses` are ASE's (its `get_velocities` is momenta / masses, so masses
+/// go with velocities); `Z` (type index + 1) comes last, because ASE builds atoms from element
+/// numbers and refuses a type name like "A" (it reads type A as hydrogen).
 fn extended_xyz(f: &Frame) -> String {
     let [lx, ly, lz] = f.box_lengths;
-    // `species` holds the type name (OVITO's particle type); `Z` the type id + 1, because ASE
-    // builds its atoms from element numbers and knows no type names.
-    let mut props = String::from("species:S:1:Z:I:1:pos:R:3");
+    let masses = f
+        .masses
+        .clone()
+        .or_else(|| f.velocities.as_ref().map(|_| vec![1.0; f.len()]));
+    let mut props = String::from("species:S:1:pos:R:3");
     if f.velocities.is_some() {
-        props += ":vel:R:3";
+        props += ":velo:R:3:momenta:R:3";
     }
-    if f.masses.is_some() {
-        props += ":masses:R:1";
+    if masses.is_some() {
+        props += ":mass:R:1:masses:R:1";
     }
+    props += ":Z:I:1";
     let mut out = format!(
-        "{}\nLattice=\"{lx} 0 0 0 {ly} 0 0 0 {lz}\" Properties={props} pbc=\"T T T\" step={}",
+        "{}\nLattice=\"{lx} 0 0 0 {ly} 0 0 0 {lz}\" Properties={props} pbc=\"T T T\" step={} \
+         time={} dt={}",
         f.len(),
-        f.step
+        f.step,
+        f.time,
+        f.dt
     );
     for (name, value) in &f.log {
         let _ = write!(out, " {}={value}", name.replace([' ', '='], "_"));
     }
     out.push('\n');
     for (i, q) in f.positions.iter().enumerate() {
-        let (name, z) = (f.type_name(i), f.typeid[i] + 1);
-        let _ = write!(out, "{name} {z} {} {} {}", q[0], q[1], q[2]);
+        let _ = write!(out, "{} {} {} {}", f.type_name(i), q[0], q[1], q[2]);
         if let Some(v) = &f.velocities {
-            let _ = write!(out, " {} {} {}", v[i][0], v[i][1], v[i][2]);
+            let m = masses.as_ref().map_or(1.0, |m| m[i]);
+            let [x, y, z] = v[i];
+            let _ = write!(out, " {x} {y} {z} {} {} {}", m * x, m * y, m * z);
         }
-        if let Some(m) = &f.masses {
-            let _ = write!(out, " {}", m[i]);
+        if let Some(m) = &masses {
+            let _ = write!(out, " {} {}", m[i], m[i]);
         }
-        out.push('\n');
+        let _ = writeln!(out, " {}", f.typeid[i] + 1);
     }
     out
 }
@@ -125,6 +139,8 @@ mod tests {
     fn two() -> Frame {
         Frame {
             step: 7,
+            time: 0.35,
+            dt: 0.05,
             box_lengths: [2.0, 3.0, 4.0],
             positions: vec![[0.5, 1.0, 1.5], [1.5, 2.5, 3.5]],
             velocities: Some(vec![[0.1, 0.2, 0.3], [-0.1, -0.2, -0.3]]),
@@ -138,15 +154,40 @@ mod tests {
     }
 
     #[test]
-    fn extended_xyz_names_the_columns_and_the_lattice() {
+    fn extended_xyz_names_the_columns_for_their_readers() {
         let text = extended_xyz(&two());
         let lines: Vec<&str> = text.lines().collect();
         assert_eq!(lines.len(), 4);
         assert_eq!(lines[0], "2");
         assert!(lines[1].starts_with("Lattice=\"2 0 0 0 3 0 0 0 4\""));
-        assert!(lines[1].contains("Properties=species:S:1:Z:I:1:pos:R:3:vel:R:3 "));
-        assert!(lines[1].ends_with("step=7 kinetic_temperature=1.25"));
-        assert_eq!(lines[3], "W 2 1.5 2.5 3.5 -0.1 -0.2 -0.3");
+        assert!(lines[1].contains(
+            "Properties=species:S:1:pos:R:3:velo:R:3:momenta:R:3:mass:R:1:masses:R:1:Z:I:1 "
+        ));
+        assert!(lines[1].ends_with("step=7 time=0.35 dt=0.05 kinetic_temperature=1.25"));
+        // Without masses in the frame, velocities come with the unit mass.
+        assert_eq!(
+            lines[3],
+            "W 1.5 2.5 3.5 -0.1 -0.2 -0.3 -0.1 -0.2 -0.3 1 1 2"
+        );
+        let heavy = Frame {
+            masses: Some(vec![1.0, 2.0]),
+            ..two()
+        };
+        let text = extended_xyz(&heavy);
+        assert_eq!(
+            text.lines().nth(3),
+            Some("W 1.5 2.5 3.5 -0.1 -0.2 -0.3 -0.2 -0.4 -0.6 2 2 2")
+        );
+        let still = Frame {
+            velocities: None,
+            ..two()
+        };
+        let text = extended_xyz(&still);
+        assert!(
+            text.contains("Properties=species:S:1:pos:R:3:Z:I:1 "),
+            "{text}"
+        );
+        assert_eq!(text.lines().nth(2), Some("A 0.5 1 1.5 1"));
     }
 
     #[test]

@@ -1,6 +1,6 @@
 //! `dpd run`: one scene with one scheme; prints the observables averaged over the runs.
 
-use super::scene_flags::SceneFlags;
+use super::scene_flags::{ObserveFlags, SceneFlags};
 use super::{bad_input, print_json, progress, INTERRUPTED};
 use dpd::error::shown;
 use dpd_measure::plot::profile_plot;
@@ -28,13 +28,19 @@ pub struct Args {
     #[arg(long, value_name = "T", requires = "trajectory")]
     every: Option<f64>,
     /// Start from a frame of a GSD file, FILE.gsd (its last frame) or FILE.gsd:K, or from a
-    /// LAMMPS data file, FILE.data
+    /// LAMMPS data file, FILE.data; the trajectory's step, time and images go on from the
+    /// frame's
     #[arg(long, value_name = "FILE.gsd[:K]|FILE.data")]
     init: Option<String>,
     /// Write each run's last state as a LAMMPS data file (FILE.data); replaces the scene's
     /// write_data
     #[arg(long, value_name = "FILE.data")]
     write_data: Option<PathBuf>,
+    /// With --init: count the trajectory's step, time and images from 0 instead
+    #[arg(long, requires = "init")]
+    init_reset: bool,
+    #[command(flatten)]
+    observe: ObserveFlags,
 }
 
 /// What `dpd run --json` prints: the combined observables of the runs, their details and the
@@ -53,7 +59,8 @@ struct RunReport<'a> {
 }
 
 pub fn main(args: Args) -> ExitCode {
-    let scene = match args.scene.scene().and_then(|s| with_files(s, &args)) {
+    let scene = args.observe.keys().and_then(|k| args.scene.scene_with(&k));
+    let scene = match scene.and_then(|s| with_files(s, &args)) {
         Ok(scene) => scene,
         Err(e) => return bad_input(e),
     };
@@ -123,7 +130,8 @@ pub fn main(args: Args) -> ExitCode {
     }
 }
 
-/// `scene` with `--trajectory`/`--every`, `--init` and `--write-data` applied, validated.
+/// `scene` with `--trajectory`/`--every`, `--init`, `--init-reset` and `--write-data`
+/// applied, validated.
 fn with_files(mut scene: Scene, args: &Args) -> Result<Scene, SceneError> {
     if let (Some(file), Some(every)) = (&args.trajectory, args.every) {
         scene.output.trajectory = Some(TrajectorySpec::new(file.clone(), every));
@@ -134,6 +142,7 @@ fn with_files(mut scene: Scene, args: &Args) -> Result<Scene, SceneError> {
     if let Some(file) = &args.write_data {
         scene.output.write_data = Some(file.clone());
     }
+    scene.geometry.init_reset |= args.init_reset;
     scene.validate()?;
     Ok(scene)
 }

@@ -2,9 +2,10 @@
 //! the default scene), which checks it as it checks the file's own keys.
 
 use dpd::lang::split_schemes;
-use dpd_measure::scene::section::merge;
+use dpd_measure::scene::section::{json_keys, merge};
 use dpd_measure::{Keys, Observable, Scene, SceneError};
 use serde::Serialize;
+use serde_json::json;
 use std::path::PathBuf;
 
 /// The scene file and the top-level scene keys that have flags.
@@ -116,6 +117,37 @@ fn observable_names() -> clap::builder::PossibleValuesParser {
     Observable::ALL.map(Observable::name).into()
 }
 
+/// The `[rdf]`, `[vacf]` and `[profile]` tables switched on from the command line. A flag that
+/// sets a key switches its table on; keys not given keep the scene file's value, else the
+/// default.
+#[derive(Clone, Debug, Default, clap::Args)]
+pub struct ObserveFlags {
+    /// Accumulate g(r) over the averaging window (the scene's [rdf] table)
+    #[arg(long)]
+    pub rdf: bool,
+    /// Range of g(r), at most half the box edge (default 2.5)
+    #[arg(long, value_name = "R", allow_negative_numbers = true)]
+    pub rdf_r_max: Option<f64>,
+    /// Bins of g(r) (default 50)
+    #[arg(long, value_name = "N")]
+    pub rdf_bins: Option<usize>,
+    /// Velocity autocorrelation, reported as the diffusion coefficient ([vacf])
+    #[arg(long)]
+    pub vacf: bool,
+    /// Longest correlation time of the VACF (default 5)
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
+    pub vacf_max_lag: Option<f64>,
+    /// Slab profiles of density, velocity and temperature ([profile])
+    #[arg(long)]
+    pub profile: bool,
+    /// Axis across the slabs: 0 = x, 1 = y, 2 = z (default 2)
+    #[arg(long, value_name = "AXIS")]
+    pub profile_axis: Option<usize>,
+    /// Slabs of the profile (default 20)
+    #[arg(long, value_name = "N")]
+    pub profile_bins: Option<usize>,
+}
+
 /// `value`'s fields as scene keys: `Serialize` turns a struct into a table, and no flag
 /// struct holds what TOML cannot.
 fn keys_of(value: &impl Serialize) -> Result<Keys, SceneError> {
@@ -136,6 +168,33 @@ impl SceneFlags {
         let mut keys = keys_of(self)?;
         merge(&mut keys, more);
         Scene::resolve(self.scene.as_deref(), &keys)
+    }
+}
+
+impl ObserveFlags {
+    /// The tables the flags switch on, with the keys they set.
+    pub fn keys(&self) -> Result<Keys, SceneError> {
+        let table = |on: bool, keys: serde_json::Value| {
+            let set = keys
+                .as_object()
+                .is_some_and(|k| k.values().any(|v| !v.is_null()));
+            match on || set {
+                true => keys,
+                false => serde_json::Value::Null,
+            }
+        };
+        json_keys(json!({
+            "rdf": table(self.rdf, json!({"r_max": self.rdf_r_max, "bins": self.rdf_bins})),
+            "vacf": table(self.vacf, json!({"max_lag": self.vacf_max_lag})),
+            "profile": table(
+                self.profile,
+                json!({"axis": self.profile_axis, "bins": self.profile_bins})
+            ),
+        }))
+        .map_err(|message| SceneError::Toml {
+            path: "(flags)".into(),
+            message,
+        })
     }
 }
 

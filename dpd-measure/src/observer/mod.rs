@@ -43,6 +43,7 @@ mod vacf;
 mod viscosity;
 
 pub use interface::{Boxed, End, Observer, Setup};
+pub use trajectory::Recorder;
 
 use dpd_core::{ParamError, System};
 

@@ -6,6 +6,7 @@ use super::interface::{Boxed, End, Observer, Setup};
 use crate::images::Images;
 use crate::result::RunResult;
 use crate::scene::{Field, TrajectorySpec};
+use crate::start::Origin;
 use dpd_core::observe::thermo;
 use dpd_core::{ParamError, System, Vec3};
 use dpd_trajectory::{Frame, Writer};
@@ -19,11 +20,14 @@ const LOG_NAMES: [&str; 4] = [
     "pressure",
 ];
 
-/// Writes one run's frames: the state at step 0 and every `every_steps` after.
-struct Recorder {
+/// Writes one run's frames: the state at step 0 and every `every_steps` after. As an
+/// [`Observer`] it is called at every step of [`Observer::next_stop`]; the Python module drives
+/// it so too.
+pub struct Recorder {
     writer: Writer,
     fields: Vec<Field>,
     every_steps: u64,
+    origin: Origin,
     path: PathBuf,
     /// With the `image` field: the images, which need the positions after every step.
     images: Option<Images>,
@@ -42,19 +46,21 @@ pub(super) fn new<'a>(
     };
     let runs = setup.scene.run.runs;
     let types = setup.scene.type_names(sys.params().types());
-    let recorder = Recorder::start(spec, setup.dt, (setup.seed, runs), types, sys)?;
+    let origin = setup.scene.origin(setup.dt)?;
+    let recorder = Recorder::start(spec, setup.dt, (setup.seed, runs), types, origin, sys)?;
     Ok(Some(Box::new(recorder)))
 }
 
 impl Recorder {
-    /// Create the file of run `seed` and write the initial state as frame 0. Images count from
-    /// this state (also when it comes from `init`).
-    /// `(seed, runs)` name the file; `types` are the type names.
-    fn start(
+    /// Create the file of run `seed` and write the initial state as frame 0. `(seed, runs)`
+    /// name the file; `types` are the type names. Steps, times and images go on from `origin`
+    /// (the default origin: 0, 0 and no image).
+    pub fn start(
         spec: &TrajectorySpec,
         dt: f64,
         (seed, runs): (u64, u64),
         types: Vec<String>,
+        origin: Origin,
         sys: &mut System,
     ) -> Result<Recorder, ParamError> {
         let fields = match &spec.fields {
@@ -68,7 +74,7 @@ impl Recorder {
             }
         };
         let images = match fields.contains(&Field::Image) {
-            true => Some(Images::start(sys)?),
+            true => Some(Images::start(sys, origin.images.as_deref())?),
             false => None,
         };
         let path = spec.path(seed, runs);
@@ -82,6 +88,7 @@ impl Recorder {
             writer,
             fields,
             every_steps: spec.every_steps(dt),
+            origin,
             path,
             images,
             types,
@@ -92,6 +99,8 @@ impl Recorder {
 
     fn record(&mut self, sys: &mut System) -> Result<(), ParamError> {
         let mut f = frame(sys, &self.fields, &self.types);
+        f.step += self.origin.step;
+        f.time += self.origin.time;
         f.images = self.images.as_ref().map(|i| i.by_id().to_vec());
         self.writer
             .append(&f)
@@ -125,7 +134,7 @@ impl Observer for Recorder {
 
 /// The system's state as a frame with type names `types`, particles in the order of their
 /// ids (the order in which the system was built; the storage order changes as the system
-/// sorts itself).
+/// sorts itself), at its own step and time (step x dt).
 fn frame(sys: &mut System, fields: &[Field], types: &[String]) -> Frame {
     let ids: Vec<usize> = sys.ids().iter().map(|&i| i as usize).collect();
     let in_id_order = |values: &[Vec3], scale: &dyn Fn(usize) -> f64| {
@@ -166,6 +175,8 @@ fn frame(sys: &mut System, fields: &[Field], types: &[String]) -> Frame {
     };
     Frame {
         step: sys.step(),
+        time: sys.step() as f64 * sys.dt(),
+        dt: sys.dt(),
         box_lengths: sys.boundary().lengths().into(),
         positions,
         velocities,

@@ -1,8 +1,9 @@
-//! The system of a scene: its sections put together into a `dpd_core::System`.
+//! The system of a scene: its sections put together into a `dpd_core::System`, and where the
+//! trajectories of its runs count from.
 
 use super::Scene;
 use crate::data_file::same_repulsions;
-use crate::start::{initial_state, InitSpec};
+use crate::start::{initial_state, InitSpec, Origin};
 use dpd_core::init::{freeze_outside, maxwell_momenta, uniform_positions};
 use dpd_core::{ParamError, Params, System, Vec3};
 
@@ -94,6 +95,22 @@ impl Scene {
         match self.species.species {
             Some(_) => self.species.names(),
             None => (0..types as u32).map(type_name).collect(),
+        }
+    }
+
+    /// Where run trajectories' counters start: the `init` frame's step, time and images, or 0
+    /// without `init` or with `init_reset`.
+    pub fn origin(&self, dt: f64) -> Result<Origin, ParamError> {
+        let geometry = &self.geometry;
+        match &geometry.init {
+            Some(init) if !geometry.init_reset => {
+                let (n, lengths) = (geometry.particles(), geometry.periodic_box()?.lengths());
+                let names = self.species.names();
+                let start =
+                    InitSpec::parse(init)?.read(n, lengths.into(), &names, self.physics.gamma)?;
+                Ok(Origin::of_frame(&start.frame, dt))
+            }
+            _ => Ok(Origin::default()),
         }
     }
 }

@@ -8,8 +8,8 @@ use dpd_core::system::DEFAULT_SKIN;
 use dpd_core::{ParamError, PeriodicBox, Walls};
 use serde::{Deserialize, Serialize};
 
-/// Keys `n`, `density`, `box`, `skin`, `init` and the table `[walls]`. Lengths in units of
-/// r_c = 1.
+/// Keys `n`, `density`, `box`, `skin`, `init`, `init_reset` and the table `[walls]`. Lengths
+/// in units of r_c = 1.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Geometry {
@@ -27,7 +27,10 @@ pub struct Geometry {
     pub box_lengths: Option<[f64; 3]>,
     pub walls: Option<WallSpec>,
     /// Start from a frame of a GSD file, `"FILE.gsd"` (its last frame) or `"FILE.gsd:K"`.
+    /// The trajectory's step, time and images go on from the frame's, as HOOMD's do.
     pub init: Option<String>,
+    /// With `init`: count the trajectory's step, time and images from 0 instead.
+    pub init_reset: bool,
 }
 
 /// Walls across z: the channel `lower <= z <= upper` holds the fluid, the slabs outside it
@@ -51,6 +54,7 @@ impl Default for Geometry {
             box_lengths: None,
             walls: None,
             init: None,
+            init_reset: false,
         }
     }
 }
@@ -127,6 +131,12 @@ impl Geometry {
         if let Some(w) = &self.walls {
             w.walls()?;
         }
+        require(
+            "init_reset",
+            self.init_reset,
+            !self.init_reset || self.init.is_some(),
+            "resets the counters of a run started from `init`: set init too, or leave it out",
+        )?;
         if let Some(init) = &self.init {
             InitSpec::parse(init)?;
         }

@@ -11,7 +11,7 @@
 //! | [`RunSpec`] | `run.rs` | `scheme`, `dt`, `time`, `average_fraction`, `sample_interval`, `seed`, `runs`, `threads` |
 //! | [`Physics`] | `physics.rs` | `a`, `gamma`, `kbt`, `mass`, `weight_exponent`, `shear_rate`, `body_force` |
 //! | [`Species`] | `species.rs` | `[[species]]`, `[pairs]` |
-//! | [`Geometry`] | `geometry.rs` | `n`, `density`, `box`, `skin`, `init`, `[walls]` |
+//! | [`Geometry`] | `geometry.rs` | `n`, `density`, `box`, `skin`, `init`, `init_reset`, `[walls]` |
 //! | [`Observe`] | `observe.rs` | `[rdf]`, `[vacf]`, `[profile]`, `energy_balance`, `like_neighbours` |
 //! | [`Output`] | `output.rs` | `description`, `[trajectory]`, `write_data` |
 //! | [`SweepSpec`] | `sweep.rs` | `[sweep]` |
