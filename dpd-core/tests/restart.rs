@@ -49,6 +49,36 @@ fn restart_without_skin_is_bitwise_identical() {
 }
 
 #[test]
+fn a_new_time_step_does_not_reuse_forces_drawn_for_the_old_one() {
+    // Velocity Verlet keeps the full forces of a step's end, whose random part is scaled by
+    // dt, for the next step's first half-kick. After `set_dt` the next steps must be those of
+    // a system whose caches were dropped by a change of positions (skin 0: the list is rebuilt
+    // at every change anyway, so the pair order is the same), not those reusing the old noise.
+    let params = dpd_core::Params::builder().build().unwrap();
+    let mut a = dpd_core::init::equilibrium_box(params, 500, 3.0, 8)
+        .unwrap()
+        .dt(0.04)
+        .skin(0.0)
+        .build()
+        .unwrap();
+    a.advance(&VelocityVerlet, 50).unwrap();
+    let mut b = a.clone();
+    let q = b.positions().to_vec();
+    b.set_positions(&q).unwrap();
+    a.set_dt(0.02).unwrap();
+    b.set_dt(0.02).unwrap();
+    for s in [&mut a, &mut b] {
+        s.advance(&VelocityVerlet, 50).unwrap();
+    }
+    assert!(
+        common::same_bits(&a, &b),
+        "set_dt kept forces of the old dt"
+    );
+    assert!(a.set_dt(0.0).unwrap_err().to_string().contains("dt"));
+    assert!(a.set_dt(f64::NAN).is_err());
+}
+
+#[test]
 fn damaged_checkpoints_are_clear_errors() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("run.ckpt");

@@ -6,7 +6,7 @@ use std::fmt;
 use std::sync::OnceLock;
 
 use dpd_core::{DynScheme, Scheme};
-use dpd_ir::lang::Diagnostic;
+use dpd_ir::lang::{Diagnostic, Options};
 use serde::Serialize;
 use thiserror::Error;
 
@@ -579,12 +579,20 @@ impl fmt::Display for ResolveError {
 /// The registered scheme named `name_or_source`, else the text compiled as a scheme string
 /// (run by the stage interpreter, named by its text).
 pub fn resolve(name_or_source: &str) -> Result<Box<dyn Scheme + Send + Sync>, ResolveError> {
+    resolve_with(name_or_source, &Default::default())
+}
+
+/// [`resolve`], compiling a scheme string with `options` (`allow_inconsistent`).
+pub fn resolve_with(
+    name_or_source: &str,
+    options: &Options,
+) -> Result<Box<dyn Scheme + Send + Sync>, ResolveError> {
     let unknown = match lookup(name_or_source) {
         Ok(entry) => return Ok(entry.scheme()),
         Err(unknown) => unknown,
     };
     let source = name_or_source.trim();
-    DynScheme::compile(source, source, &Default::default())
+    DynScheme::compile(source, source, options)
         .map(|s| Box::new(s) as Box<dyn Scheme + Send + Sync>)
         .map_err(|diagnostics| ResolveError::new(unknown, source, diagnostics))
 }

@@ -166,6 +166,17 @@ impl System {
     pub fn dt(&self) -> f64 {
         self.dt
     }
+    /// Change the time step between steps (a dt sweep from one state, as HOOMD's
+    /// `integrator.dt`). The cached full forces are dropped: their random part is scaled by the
+    /// time step they were drawn for.
+    pub fn set_dt(&mut self, dt: f64) -> Result<(), ParamError> {
+        if !(dt.is_finite() && dt > 0.0) {
+            return Err(ParamError::new("dt", dt, "must be finite and > 0"));
+        }
+        self.dt = dt;
+        self.full_at = Stamp::default();
+        Ok(())
+    }
     /// Key of the pair random numbers.
     pub fn seed(&self) -> u64 {
         self.seed
