@@ -1,20 +1,25 @@
 //! The Python module `dpd`: the order analysis, the registry, a steppable simulation, the
-//! dt sweep and the KL estimate, as thin wrappers over the crates the `dpd` program uses. Results are the same
-//! JSON values the program prints, converted to Python objects; invalid input raises
-//! `ValueError` with the program's message.
+//! dt sweep and the KL estimate, as thin wrappers over the crates the `dpd` program uses.
+//! Results are the same JSON values the program prints, converted to Python objects. Errors are
+//! of the Python kind: a wrong type or an unknown keyword is a `TypeError`, an invalid value a
+//! `ValueError` with the program's message, a file that cannot be read or written an `OSError`,
+//! a blow-up `dpd.BlowUpError`.
 
+mod keys;
 mod simulation;
 mod wait;
 
+use dpd_ir::lang::split_schemes;
 use dpd_measure::kl::{estimate, KlError, KlSpec};
-use dpd_measure::sweep::{load_finished, run_sweep, Hooks};
-use dpd_measure::{Control, Keys, Observable, Scene, SweepResults};
+use dpd_measure::sweep::{load_finished, run_sweep, write_finished, Hooks};
+use dpd_measure::{Control, Keys, Observable, SweepResults};
 use dpd_schemes::check::{check as check_scheme, CheckError};
 use dpd_schemes::registry::resolve;
 use dpd_schemes::registry::{entries, Row};
-use pyo3::exceptions::{PyRuntimeError, PyRuntimeWarning, PyValueError};
+use keys::{os_error, scene_of};
+use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyString};
 use pythonize::{depythonize, pythonize};
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
@@ -40,30 +45,6 @@ fn to_python<T: serde::Serialize>(py: Python<'_>, value: &T) -> PyResult<PyObjec
         .unbind())
 }
 
-/// The scene keys of `kwargs` (any key of a scene file; `scene` names a TOML file; a key given
-/// as None is left to the file) merged over the scene file or the default scene, with `more`
-/// over them, validated.
-fn scene_of(kwargs: Option<&Bound<'_, PyDict>>, more: &Keys) -> PyResult<Scene> {
-    let mut keys = Keys::new();
-    let mut file: Option<PathBuf> = None;
-    for (key, value) in kwargs.into_iter().flat_map(|k| k.iter()) {
-        let key: String = key.extract()?;
-        if value.is_none() {
-            continue;
-        }
-        if key == "scene" {
-            let os = value.py().import("os")?;
-            file = Some(os.call_method1("fspath", (value,))?.extract()?);
-            continue;
-        }
-        let value: toml::Value =
-            depythonize(&value).map_err(|e| invalid(format!("scene key {key}: {e}")))?;
-        keys.insert(key, value);
-    }
-    dpd_measure::scene::section::merge(&mut keys, more);
-    Scene::resolve(file.as_deref(), &keys).map_err(invalid)
-}
-
 /// check(scheme)
 /// --
 ///
@@ -83,21 +64,26 @@ fn schemes(py: Python<'_>) -> PyResult<PyObject> {
     to_python(py, &rows)
 }
 
+/// sweep(*, schemes=None, dt_min=None, dt_max=None, dt_factor=None, reference=None, observable=None, json=None, fresh=False, scene=None, **keys)
+/// --
+///
 /// Schemes over a geometric range of dt, as `dpd sweep`: returns the results file's content
-/// (scene, points, rows, baseline, summary, complete) as Python objects. `json` names a
-/// results file written after every finished point and read back to resume (unless
-/// `fresh`); the other keywords are scene keys, as for `Simulation`. The GIL is released
-/// while the runs go on; Ctrl-C stops them and raises `KeyboardInterrupt` (the finished
-/// points are in `json`).
+/// (scene, points, rows, baseline, summary, complete) as Python objects. `schemes` is a list of
+/// registry names or scheme strings, or one string split at its top-level commas as
+/// `--schemes` is. `json` names a results file written after every finished point and read
+/// back to resume (unless `fresh`); it is written once before the runs start, so a path that
+/// cannot be written raises `OSError` at once. The other keywords are scene keys, as for
+/// `Simulation`. The GIL is released while the runs go on; Ctrl-C stops them and raises
+/// `KeyboardInterrupt` (the finished points are in `json`).
 #[pyfunction]
 #[pyo3(signature = (
     *, schemes=None, dt_min=None, dt_max=None, dt_factor=None, reference=None,
     observable=None, json=None, fresh=false, **scene
-))]
+), text_signature = "(*, schemes=None, dt_min=None, dt_max=None, dt_factor=None, reference=None, observable=None, json=None, fresh=False, scene=None, **keys)")]
 #[allow(clippy::too_many_arguments)]
 fn sweep(
     py: Python<'_>,
-    schemes: Option<Vec<String>>,
+    schemes: Option<Bound<'_, PyAny>>,
     dt_min: Option<f64>,
     dt_max: Option<f64>,
     dt_factor: Option<f64>,
@@ -111,6 +97,7 @@ fn sweep(
         .map(|o| depythonize(&o))
         .transpose()
         .map_err(|e| invalid(format!("observable: {e}")))?;
+    let schemes = schemes.map(|s| scheme_names(&s)).transpose()?;
     let mut table = Keys::new();
     let mut set = |key: &str, value: Option<toml::Value>| {
         if let Some(v) = value {
@@ -129,12 +116,18 @@ fn sweep(
         Some(path) if !fresh => load_finished(path, &scene).map_err(invalid)?,
         _ => Vec::new(),
     };
+    let cannot_write = |path: &PathBuf, e: &std::io::Error| {
+        os_error(e, format!("cannot write {}: {e}", path.display()))
+    };
+    if let Some(path) = &json {
+        write_finished(path, &scene, &finished).map_err(|e| cannot_write(path, &e))?;
+    }
     let write_error = Mutex::new(None);
     let save = |r: &SweepResults| {
         if let Some(path) = &json {
             if let Err(e) = r.write_json(path) {
                 let mut first = write_error.lock().unwrap_or_else(|e| e.into_inner());
-                first.get_or_insert(format!("cannot write {}: {e}", path.display()));
+                first.get_or_insert(cannot_write(path, &e));
             }
         }
     };
@@ -148,18 +141,31 @@ fn sweep(
     };
     let results =
         wait::interruptible(py, &stop, || run_sweep(&scene, finished, hooks))?.map_err(invalid)?;
-    if let Some(message) = write_error.into_inner().unwrap_or_else(|e| e.into_inner()) {
-        PyErr::warn(
-            py,
-            &py.get_type::<PyRuntimeWarning>(),
-            &std::ffi::CString::new(message)?,
-            0,
-        )?;
+    if let Some(e) = write_error.into_inner().unwrap_or_else(|e| e.into_inner()) {
+        return Err(e);
     }
     to_python(py, &results)
 }
 
-/// kl(scheme, *, samples=200, protocol_time=2.0, sweeps_between=2, **scene)
+/// The schemes of `sweep(schemes=...)`: a list of strings, or one string split as
+/// `--schemes` is.
+fn scheme_names(schemes: &Bound<'_, PyAny>) -> PyResult<Vec<String>> {
+    if schemes.is_instance_of::<PyString>() {
+        let text: String = schemes.extract()?;
+        return split_schemes(&text).map_err(|e| invalid(format!("invalid schemes: {e}")));
+    }
+    schemes.extract().map_err(|_| {
+        PyTypeError::new_err(format!(
+            "schemes: expected a str or a list of str, got {}",
+            schemes
+                .get_type()
+                .name()
+                .map_or("?".into(), |n| n.to_string())
+        ))
+    })
+}
+
+/// kl(scheme, *, samples=200, protocol_time=2.0, sweeps_between=2, scene=None, **keys)
 /// --
 ///
 /// The KL divergence between the configurations `scheme` samples at the scene's dt and
@@ -215,6 +221,8 @@ fn dpd_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(kl, m)?)?;
     m.add_class::<simulation::Simulation>()?;
+    m.add_class::<simulation::Snapshot>()?;
     m.add("BlowUpError", m.py().get_type::<BlowUpError>())?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -1,130 +1,308 @@
-//! `dpd.Simulation`: one scene's system stepped by one scheme, read back as numpy arrays and
-//! observables.
+//! `dpd.Simulation`: one scene's system stepped by one scheme, read and written as numpy
+//! arrays, copied into snapshots, saved to checkpoints, recorded into trajectories.
 
+use crate::keys::{os_error, scene_of};
 use crate::{invalid, to_python, wait, BlowUpError};
 use dpd_core::observe::thermo;
-use dpd_core::{AdvanceError, Scheme, System};
+use dpd_core::{AdvanceError, CheckpointError, ParamError, Scheme, System, Vec3};
+use dpd_ir::lang::Options;
+use dpd_measure::observer::{Observer, Recorder};
+use dpd_measure::scene::{Field, TrajectorySpec};
+use dpd_measure::start::Origin;
+use dpd_measure::Keys;
 use dpd_measure::Scene;
 use dpd_schemes::check::CheckError;
-use dpd_schemes::registry::resolve;
+use dpd_schemes::registry::resolve_with;
 use numpy::ndarray::Array2;
-use numpy::{IntoPyArray, PyArray2};
+use numpy::{IntoPyArray, PyArray2, PyReadonlyArrayDyn, PyUntypedArrayMethods};
+use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use pythonize::depythonize;
+use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Steps between checks for Ctrl-C within `run`.
 const CHUNK: u64 = 50;
 
-/// Simulation(**scene)
+/// Simulation(*, allow_inconsistent=False, scene=None, scheme=None, dt=None, n=None, density=None, box=None, a=None, gamma=None, kbt=None, mass=None, weight_exponent=None, seed=None, threads=None, skin=None, shear_rate=None, body_force=None, walls=None, init=None, init_reset=None, trajectory=None, time=None, average_fraction=None, sample_interval=None, runs=None, energy_balance=None, rdf=None, vacf=None, profile=None, sweep=None, description=None)
 /// --
 ///
 /// The initial state of a scene (uniform positions, Maxwell velocities, as the first run of
-/// `dpd run`) with its scheme. Keywords are the scene keys of `dpd run`'s flags (scheme, dt,
-/// n, gamma, seed, density, a, kbt, mass, weight_exponent, threads, shear_rate, ...);
-/// `scene` names a TOML scene file whose keys they override. Reduced DPD units.
+/// `dpd run`; or the frame of `init`) with its scheme. Every keyword is the scene key of the
+/// same name (docs/cli.md lists them; tables such as `walls` or `trajectory` take a dict of
+/// their keys); `scene` names a TOML scene file whose keys they override. A scene with a
+/// `trajectory` table records it during `run`, as `dpd run` does. Reduced DPD units.
+/// Raises TypeError for an unknown keyword or a value of the wrong type, ValueError for an
+/// invalid value.
 #[pyclass(module = "dpd")]
 pub struct Simulation {
     scene: Scene,
     system: System,
     scheme: Box<dyn Scheme + Send + Sync>,
-    /// The core's pair loops run on `scene.threads` threads (0: one per core).
+    /// The core's pair loops run on `scene.run.threads` threads (0: one per core).
     pool: rayon::ThreadPool,
+    /// Step and time of the system's step 0 (an `init` frame's, else 0); the time is shifted
+    /// at every change of dt so that it runs on continuously.
+    origin: Origin,
+    recorder: Option<Recorder>,
+    /// Scheme strings whose coefficients do not sum to 1 are accepted.
+    allow_inconsistent: bool,
+}
+
+/// A copy of a simulation's state (`Simulation.snapshot()`), restored bit for bit by
+/// `Simulation.restore()`.
+#[pyclass(module = "dpd", frozen)]
+pub struct Snapshot {
+    system: System,
+    scheme: String,
+    origin: Origin,
+}
+
+#[pymethods]
+impl Snapshot {
+    /// Step of the copied state.
+    #[getter]
+    fn step(&self) -> u64 {
+        self.origin.step + self.system.step()
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Snapshot(scheme={:?}, dt={}, step={})",
+            self.scheme,
+            self.system.dt(),
+            self.step()
+        )
+    }
 }
 
 /// `rows` as an (N, 3) array.
-fn array<'py>(
-    py: Python<'py>,
-    rows: impl ExactSizeIterator<Item = [f64; 3]>,
-) -> Bound<'py, PyArray2<f64>> {
+fn array<'py>(py: Python<'py>, rows: Vec<[f64; 3]>) -> Bound<'py, PyArray2<f64>> {
     let n = rows.len();
-    let flat: Vec<f64> = rows.flatten().collect();
+    let flat: Vec<f64> = rows.into_iter().flatten().collect();
     Array2::from_shape_vec((n, 3), flat)
         .expect("n rows of 3")
         .into_pyarray(py)
 }
 
+/// `values` (in storage order) in the order of the particles' ids, each scaled by `scale(k)`.
+fn by_id(sys: &System, values: &[Vec3], scale: impl Fn(usize) -> f64) -> Vec<[f64; 3]> {
+    let mut out = vec![[0.0; 3]; values.len()];
+    for (k, &id) in sys.ids().iter().enumerate() {
+        out[id as usize] = (values[k] * scale(k)).into();
+    }
+    out
+}
+
+/// An (N, 3) array of floats from any array-like `value`, by particle id, as storage-ordered
+/// vectors; `name` names it in errors.
+fn rows_by_id(sys: &System, name: &str, value: &Bound<'_, PyAny>) -> PyResult<Vec<Vec3>> {
+    let numpy = value.py().import("numpy")?;
+    let a = numpy.call_method1("asarray", (value, "float64"))?;
+    let a: PyReadonlyArrayDyn<f64> = a.extract()?;
+    let n = sys.len();
+    if a.shape() != [n, 3] {
+        return Err(invalid(format!(
+            "invalid {name}: shape {:?}; must be ({n}, 3), one row per particle",
+            a.shape()
+        )));
+    }
+    let a = a.as_array();
+    if let Some(bad) = a.iter().find(|x| !x.is_finite()) {
+        return Err(invalid(format!("invalid {name}: {bad}; must be finite")));
+    }
+    Ok(sys
+        .ids()
+        .iter()
+        .map(|&id| {
+            let i = id as usize;
+            Vec3::new(a[[i, 0]], a[[i, 1]], a[[i, 2]])
+        })
+        .collect())
+}
+
+/// The scheme `name` resolves to, checked against the force groups of `sys`; or the
+/// `ValueError` `dpd check` prints, or the one naming the force group.
+fn scheme_of(
+    name: &str,
+    allow_inconsistent: bool,
+    sys: &System,
+) -> PyResult<Box<dyn Scheme + Send + Sync>> {
+    let scheme = resolve_with(name, &Options { allow_inconsistent }).map_err(|reason| {
+        invalid(CheckError {
+            scheme: name.to_string(),
+            reason,
+        })
+    })?;
+    sys.check_scheme(scheme.as_ref()).map_err(invalid)?;
+    Ok(scheme)
+}
+
+fn checkpoint_error(e: CheckpointError) -> PyErr {
+    match &e {
+        CheckpointError::Io { source, .. } => os_error(source, e.to_string()),
+        _ => invalid(e),
+    }
+}
+
+/// What stopped `run`: a blow-up (or a scheme the system cannot run), or a trajectory frame
+/// that could not be written.
+enum Stopped {
+    Advance(AdvanceError),
+    Write(ParamError),
+}
+
 #[pymethods]
 impl Simulation {
     #[new]
-    #[pyo3(signature = (**scene))]
-    fn new(scene: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
-        let scene = crate::scene_of(scene, &Default::default())?;
+    #[pyo3(signature = (*, allow_inconsistent=false, **scene), text_signature = "(*, allow_inconsistent=False, scene=None, scheme=None, dt=None, n=None, density=None, box=None, a=None, gamma=None, kbt=None, mass=None, weight_exponent=None, seed=None, threads=None, skin=None, shear_rate=None, body_force=None, walls=None, init=None, init_reset=None, trajectory=None, time=None, average_fraction=None, sample_interval=None, runs=None, energy_balance=None, rdf=None, vacf=None, profile=None, sweep=None, description=None)")]
+    fn new(allow_inconsistent: bool, scene: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+        let scene = scene_of(scene, &Keys::new())?;
         let run = &scene.run;
-        let scheme = resolve(&run.scheme).map_err(|reason| {
-            invalid(CheckError {
-                scheme: run.scheme.clone(),
-                reason,
-            })
-        })?;
-        let system = scene.system(run.dt, run.seed).map_err(invalid)?;
-        system.check_scheme(scheme.as_ref()).map_err(invalid)?;
+        let mut system = scene.system(run.dt, run.seed).map_err(invalid)?;
+        let scheme = scheme_of(&run.scheme, allow_inconsistent, &system)?;
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(run.threads)
             .build()
             .map_err(|e| invalid(format!("invalid threads = {}: {e}", run.threads)))?;
+        let origin = scene.origin(run.dt).map_err(invalid)?;
+        let recorder = match &scene.output.trajectory {
+            Some(spec) => Some(
+                Recorder::start(
+                    spec,
+                    run.dt,
+                    (run.seed, 1),
+                    scene.type_names(system.params().types()),
+                    origin.clone(),
+                    &mut system,
+                )
+                .map_err(invalid)?,
+            ),
+            None => None,
+        };
         Ok(Simulation {
             scene,
             system,
             scheme,
             pool,
+            origin,
+            recorder,
+            allow_inconsistent,
         })
     }
 
     /// run(steps)
     /// --
     ///
-    /// Advance `steps` steps of dt with the GIL released. Raises BlowUpError (the state is
-    /// the one before the failing step) or, on Ctrl-C, KeyboardInterrupt after the current
-    /// chunk of steps.
-    fn run(&mut self, py: Python<'_>, steps: u64) -> PyResult<()> {
+    /// Advance `steps` steps of dt with the GIL released, writing the trajectory's frames as
+    /// they fall due. Raises BlowUpError (the state is the one before the failing step) or,
+    /// on Ctrl-C, KeyboardInterrupt after the current chunk of steps.
+    fn run(&mut self, py: Python<'_>, steps: i64) -> PyResult<()> {
+        let steps = u64::try_from(steps)
+            .map_err(|_| invalid(format!("invalid steps = {steps}: must be >= 0")))?;
         let stop = AtomicBool::new(false);
         let (system, scheme, pool) = (&mut self.system, &self.scheme, &self.pool);
+        let recorder = &mut self.recorder;
         let outcome = wait::interruptible(py, &stop, || {
             pool.install(|| {
-                let mut left = steps;
-                while left > 0 && !stop.load(Ordering::Relaxed) {
-                    let chunk = left.min(CHUNK);
-                    system.advance(scheme.as_ref(), chunk)?;
-                    left -= chunk;
+                let end = system.step() + steps;
+                while system.step() < end && !stop.load(Ordering::Relaxed) {
+                    let next = recorder
+                        .as_ref()
+                        .map_or(u64::MAX, |r| r.next_stop(system.step()));
+                    let chunk = (end - system.step()).min(CHUNK).min(next - system.step());
+                    system
+                        .advance(scheme.as_ref(), chunk)
+                        .map_err(Stopped::Advance)?;
+                    if let Some(r) = recorder.as_mut() {
+                        r.after_steps(system).map_err(Stopped::Write)?;
+                    }
                 }
-                Ok::<(), AdvanceError>(())
+                Ok(())
             })
         })?;
         outcome.map_err(|e| match e {
-            AdvanceError::Scheme(e) => invalid(e),
-            AdvanceError::BlowUp(e) => BlowUpError::new_err(e.to_string()),
+            Stopped::Advance(AdvanceError::BlowUp(e)) => BlowUpError::new_err(e.to_string()),
+            Stopped::Advance(AdvanceError::Scheme(e)) => invalid(e),
+            Stopped::Write(e) => invalid(e),
         })
     }
 
-    /// Positions, an (N, 3) array wrapped into the box.
+    /// Positions, an (N, 3) array wrapped into the box, row i for particle i (the order in
+    /// which the system was built, as in trajectories). Settable from any (N, 3) array-like,
+    /// wrapped into the box.
     #[getter]
     fn positions<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        array(py, self.system.positions().iter().map(|q| [q.x, q.y, q.z]))
+        let s = &self.system;
+        array(py, by_id(s, s.positions(), |_| 1.0))
     }
 
-    /// Velocities p / m, an (N, 3) array.
+    #[setter]
+    fn set_positions(&mut self, value: &Bound<'_, PyAny>) -> PyResult<()> {
+        self.no_trajectory("set positions")?;
+        let q = rows_by_id(&self.system, "positions", value)?;
+        self.system.set_positions(&q).map_err(invalid)
+    }
+
+    /// Velocities p / m, an (N, 3) array, row i for particle i. Settable from any (N, 3)
+    /// array-like.
     #[getter]
     fn velocities<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         let s = &self.system;
-        let v = s
-            .momenta()
-            .iter()
-            .zip(s.masses())
-            .map(|(p, m)| (p / *m).into());
-        array(py, v)
+        array(py, by_id(s, s.momenta(), |k| 1.0 / s.masses()[k]))
     }
 
-    /// Steps done.
+    #[setter]
+    fn set_velocities(&mut self, value: &Bound<'_, PyAny>) -> PyResult<()> {
+        let v = rows_by_id(&self.system, "velocities", value)?;
+        let masses = self.system.masses().to_vec();
+        for ((p, v), m) in self.system.momenta_mut().iter_mut().zip(v).zip(masses) {
+            *p = v * m;
+        }
+        Ok(())
+    }
+
+    /// Steps done (counted on from an `init` frame's step unless `init_reset`).
     #[getter]
     fn step(&self) -> u64 {
-        self.system.step()
+        self.origin.step + self.system.step()
     }
 
-    /// Time reached, step x dt.
+    /// Simulation time reached: the sum of the steps' dt (from an `init` frame's time).
     #[getter]
     fn time(&self) -> f64 {
-        self.system.step() as f64 * self.system.dt()
+        self.origin.time + self.system.step() as f64 * self.system.dt()
+    }
+
+    /// Time step; settable between runs (the time runs on continuously). Not while a
+    /// trajectory is being written, whose frames are counted in steps of the dt it started at.
+    #[getter]
+    fn dt(&self) -> f64 {
+        self.system.dt()
+    }
+
+    #[setter]
+    fn set_dt(&mut self, dt: f64) -> PyResult<()> {
+        self.no_trajectory("change dt")?;
+        let (old, steps) = (self.system.dt(), self.system.step() as f64);
+        self.system.set_dt(dt).map_err(invalid)?;
+        self.origin.time += steps * (old - dt);
+        self.scene.run.dt = dt;
+        Ok(())
+    }
+
+    /// The scheme, a registry name or a scheme string; settable between runs.
+    #[getter]
+    fn scheme(&self) -> String {
+        self.scene.run.scheme.clone()
+    }
+
+    #[setter]
+    fn set_scheme(&mut self, scheme: String) -> PyResult<()> {
+        self.scheme = scheme_of(&scheme, self.allow_inconsistent, &self.system)?;
+        self.scene.run.scheme = scheme;
+        Ok(())
     }
 
     /// Box edges [L_x, L_y, L_z].
@@ -160,13 +338,142 @@ impl Simulation {
         Ok(d.into_any().unbind())
     }
 
+    /// snapshot()
+    /// --
+    ///
+    /// A copy of the whole state (positions, momenta, step, dt, scheme, the neighbour list
+    /// and the caches the next step reads): `restore` continues from it bit for bit.
+    fn snapshot(&self) -> Snapshot {
+        Snapshot {
+            system: self.system.clone(),
+            scheme: self.scene.run.scheme.clone(),
+            origin: self.origin.clone(),
+        }
+    }
+
+    /// restore(snapshot)
+    /// --
+    ///
+    /// Return to the state of `snapshot` (also its dt and scheme).
+    fn restore(&mut self, snapshot: &Snapshot) -> PyResult<()> {
+        self.no_trajectory("restore a snapshot")?;
+        self.scheme = scheme_of(&snapshot.scheme, true, &snapshot.system)?;
+        self.system = snapshot.system.clone();
+        self.origin = snapshot.origin.clone();
+        self.scene.run.scheme = snapshot.scheme.clone();
+        self.scene.run.dt = self.system.dt();
+        Ok(())
+    }
+
+    /// save_checkpoint(path)
+    /// --
+    ///
+    /// Write the state to a checkpoint file (the format of the `dpd` program's checkpoints,
+    /// written atomically); `load_checkpoint` continues from it bit for bit, also in another
+    /// process. Raises OSError when the file cannot be written.
+    fn save_checkpoint(&self, path: PathBuf) -> PyResult<()> {
+        self.system
+            .save_checkpoint(&path, &self.scene.run.scheme)
+            .map_err(checkpoint_error)
+    }
+
+    /// load_checkpoint(path)
+    /// --
+    ///
+    /// Replace the state by the checkpoint's (its particles, dt and scheme; the time is
+    /// step x dt of the checkpoint). Raises OSError for a file that cannot be read, ValueError
+    /// for one that is not a valid checkpoint.
+    fn load_checkpoint(&mut self, path: PathBuf) -> PyResult<()> {
+        self.no_trajectory("load a checkpoint")?;
+        let (system, name) = System::load_checkpoint(&path).map_err(checkpoint_error)?;
+        self.scheme = scheme_of(&name, true, &system)?;
+        self.system = system;
+        self.origin = Origin::default();
+        self.scene.run.scheme = name;
+        self.scene.run.dt = self.system.dt();
+        self.scene.geometry.n = self.system.len();
+        Ok(())
+    }
+
+    /// trajectory(file, every=None, fields=None)
+    /// --
+    ///
+    /// Write a frame of the current state to `file` (.gsd, .xyz, .lammpstrj or .dump) now and
+    /// every `every` time units of the following runs, as `dpd run --trajectory` does;
+    /// `fields` is a list of "velocity", "mass", "image", "observables" (default: all;
+    /// images count from now). `trajectory(None)` closes the file.
+    #[pyo3(signature = (file, every=None, fields=None))]
+    fn trajectory(
+        &mut self,
+        file: Option<PathBuf>,
+        every: Option<f64>,
+        fields: Option<Bound<'_, PyAny>>,
+    ) -> PyResult<()> {
+        self.recorder = None;
+        let Some(file) = file else {
+            return Ok(());
+        };
+        let every = every
+            .ok_or_else(|| PyTypeError::new_err("trajectory(file, every): every is missing"))?;
+        let fields: Option<Vec<Field>> = fields
+            .map(|f| depythonize(&f))
+            .transpose()
+            .map_err(|e| invalid(format!("invalid fields: {e}")))?;
+        let spec = TrajectorySpec {
+            fields,
+            ..TrajectorySpec::new(file, every)
+        };
+        spec.validate().map_err(invalid)?;
+        let origin = Origin {
+            images: None,
+            ..self.origin.clone()
+        };
+        let dt = self.system.dt();
+        self.recorder = Some(
+            Recorder::start(
+                &spec,
+                dt,
+                (self.scene.run.seed, 1),
+                self.scene.type_names(self.system.params().types()),
+                origin,
+                &mut self.system,
+            )
+            .map_err(invalid)?,
+        );
+        Ok(())
+    }
+
+    /// Refused: a Simulation holds a thread pool and open files. `snapshot()` copies the
+    /// state within a process, `save_checkpoint(path)` across processes.
+    fn __reduce__(&self) -> PyResult<PyObject> {
+        Err(PyTypeError::new_err(
+            "cannot pickle a dpd.Simulation: use snapshot() to copy its state within a \
+             process, save_checkpoint(path) and load_checkpoint(path) across processes",
+        ))
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "Simulation(scheme={:?}, dt={}, n={}, step={})",
             self.scene.run.scheme,
-            self.scene.run.dt,
+            self.system.dt(),
             self.system.len(),
-            self.system.step()
+            self.step()
         )
+    }
+}
+
+impl Simulation {
+    /// Refuse `what` while a trajectory is being written: its frames count steps of one dt
+    /// and follow the particles' images from step to step.
+    fn no_trajectory(&self, what: &str) -> PyResult<()> {
+        match &self.recorder {
+            Some(_) => Err(PyValueError::new_err(format!(
+                "cannot {what} while a trajectory is being written (its frames count steps of \
+                 one dt and follow each particle's images): close it first with \
+                 sim.trajectory(None)"
+            ))),
+            None => Ok(()),
+        }
     }
 }

@@ -1,6 +1,7 @@
 """The Python module against known answers of the analysis, the registry and the physics."""
 
 import threading
+from typing import Any
 
 import numpy as np
 import pytest
@@ -84,13 +85,41 @@ def test_the_thermostat_holds_the_temperature():
     assert set(o) >= {"potential_energy", "pressure", "configurational_temperature", "step"}
 
 
-def test_bad_scene_keys_are_value_errors_naming_the_key():
+def test_bad_scene_keys_are_errors_of_the_python_kind_naming_the_key(tmp_path):
     with pytest.raises(ValueError, match=r"invalid gamma = -1: must be finite and >= 0"):
         dpd.Simulation(gamma=-1.0)
-    with pytest.raises(ValueError, match="unknown field `gama`"):
-        dpd.Simulation(gama=4.5)
+    with pytest.raises(TypeError, match="unknown field `gama`; did you mean `gamma`"):
+        dpd.Simulation(gama=4.5)  # type: ignore[call-arg]
+    with pytest.raises(TypeError, match=r'invalid type: string "0.05", expected f64 in `dt`'):
+        dpd.Simulation(dt="0.05")  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="unknown field `bns`.* in `rdf`"):
+        dpd.Simulation(rdf={"bns": 20})
     with pytest.raises(ValueError, match=r"^invalid scheme: not a valid scheme string"):
         dpd.Simulation(scheme="ABQ")
+    with pytest.raises(FileNotFoundError, match="missing.toml"):
+        dpd.Simulation(scene=tmp_path / "missing.toml")
+    sim = dpd.Simulation(n=100)
+    with pytest.raises(ValueError, match=r"invalid steps = -1: must be >= 0"):
+        sim.run(steps=-1)
+    with pytest.raises(TypeError):
+        sim.run(steps="10")  # type: ignore[arg-type]
+
+
+def test_every_scene_key_is_a_keyword():
+    # skin, box and the tables are scene keys that were no flags of `dpd run`.
+    sim = dpd.Simulation(n=100, skin=0.3, rdf={"bins": 20, "r_max": 1.5}, average_fraction=0.5)
+    rdf = sim.scene["rdf"]
+    assert (sim.scene["skin"], rdf["bins"], rdf["r_max"], rdf["interval"]) == (0.3, 20, 1.5, None)
+    boxed = dpd.Simulation(box=[4.0, 4.0, 5.0], density=3.0)
+    assert boxed.box_lengths == [4.0, 4.0, 5.0] and len(boxed.positions) == 240
+
+
+def test_an_inconsistent_scheme_runs_when_allowed_as_the_message_says():
+    with pytest.raises(ValueError, match="pass allow_inconsistent"):
+        dpd.Simulation(scheme="A B(1/2) O", n=100)
+    sim = dpd.Simulation(scheme="A B(1/2) O", n=100, allow_inconsistent=True)
+    sim.run(steps=5)
+    assert sim.step == 5
 
 
 def test_a_blow_up_raises_and_keeps_the_last_good_state():
@@ -129,7 +158,7 @@ def test_run_releases_the_gil():
 
 
 def test_a_sweep_returns_the_results_file_and_resumes_from_it(tmp_path):
-    keys = dict(n=100, time=2.0, schemes=["aboba", "vv"], dt_min=0.02, dt_max=0.04,
+    keys: dict[str, Any] = dict(n=100, time=2.0, schemes=["aboba", "vv"], dt_min=0.02, dt_max=0.04,
                 dt_factor=2.0, threads=1)
     results = tmp_path / "sweep.json"
     r = dpd.sweep(json=results, **keys)
@@ -149,7 +178,21 @@ def test_an_invalid_sweep_is_a_value_error():
     with pytest.raises(ValueError, match="sweep.reference"):
         dpd.sweep(n=100, schemes=["aboba"], reference="vv")
     with pytest.raises(ValueError, match="observable"):
-        dpd.sweep(n=100, observable="pressure")
+        dpd.sweep(n=100, observable="pressure")  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="schemes: expected a str or a list of str"):
+        dpd.sweep(n=100, schemes=3)  # type: ignore[arg-type]
+
+
+def test_a_sweep_takes_its_schemes_as_one_string(tmp_path):
+    r = dpd.sweep(n=100, time=1.0, schemes="aboba, vv", reference="vv", dt_min=0.05,
+                  dt_max=0.05, threads=1)
+    assert [s["scheme"] for s in r["summary"]] == ["aboba", "vv"]
+
+
+def test_a_results_file_that_cannot_be_written_raises_before_the_runs(tmp_path):
+    with pytest.raises(FileNotFoundError, match="missing-dir"):
+        dpd.sweep(n=100, json=tmp_path / "missing-dir" / "x.json", schemes="aboba",
+                  reference="aboba")
 
 
 def test_kl_returns_the_estimate_of_dpd_kl():
@@ -188,3 +231,108 @@ def test_ctrl_c_stops_a_run_within_a_chunk():
     finally:
         signal.signal(signal.SIGINT, previous)
     assert 0 < sim.step < 100_000 and sim.step % 50 == 0
+
+
+def test_positions_and_velocities_are_set_from_arrays_by_particle():
+    sim = dpd.Simulation(scheme="aboba", dt=0.05, n=200, seed=3)
+    sim.run(steps=30)  # the storage is re-sorted at list builds; rows stay with particles
+    q, v = sim.positions, sim.velocities
+    q[7] = [0.5, 0.5, 0.5]
+    v[7] = [1.0, -2.0, 0.25]
+    sim.positions, sim.velocities = q, v
+    assert np.array_equal(sim.positions, q) and np.array_equal(sim.velocities, v)
+    with pytest.raises(ValueError, match=r"invalid positions: shape \[10, 3\]; must be \(200, 3\)"):
+        sim.positions = np.zeros((10, 3))
+    bad = sim.velocities
+    bad[0, 0] = np.nan
+    with pytest.raises(ValueError, match="invalid velocities: NaN; must be finite"):
+        sim.velocities = bad
+    # A state set from arrays is stepped like any other: its T_K follows the new velocities.
+    sim.velocities = np.zeros((200, 3))
+    assert sim.observables()["kinetic_temperature"] == 0.0
+
+
+def test_a_snapshot_restores_bit_for_bit():
+    sim = dpd.Simulation(scheme="vv", dt=0.04, n=200, seed=5)
+    sim.run(steps=20)
+    snap = sim.snapshot()
+    sim.run(steps=30)
+    q, v = sim.positions, sim.velocities
+    sim.restore(snap)
+    assert (sim.step, snap.step) == (20, 20)
+    sim.run(steps=30)
+    assert np.array_equal(sim.positions, q) and np.array_equal(sim.velocities, v)
+
+
+def test_a_checkpoint_continues_bit_for_bit_in_a_new_simulation(tmp_path):
+    path = tmp_path / "run.ckpt"
+    sim = dpd.Simulation(scheme="baoab", dt=0.04, n=200, seed=2)
+    sim.run(steps=25)
+    sim.save_checkpoint(path)
+    sim.run(steps=25)
+    other = dpd.Simulation(n=100)
+    other.load_checkpoint(path)
+    assert (other.scheme, other.dt, other.step, len(other.positions)) == ("baoab", 0.04, 25, 200)
+    other.run(steps=25)
+    assert np.array_equal(other.positions, sim.positions)
+    with pytest.raises(FileNotFoundError):
+        other.load_checkpoint(tmp_path / "none.ckpt")
+    (tmp_path / "junk.ckpt").write_bytes(b"x" * 100)
+    with pytest.raises(ValueError, match="not a dpd checkpoint"):
+        other.load_checkpoint(tmp_path / "junk.ckpt")
+
+
+def test_pickling_is_refused_with_what_to_use_instead():
+    import pickle
+
+    with pytest.raises(TypeError, match="snapshot"):
+        pickle.dumps(dpd.Simulation(n=100))
+
+
+def test_dt_and_scheme_change_between_runs():
+    # A run at dt 0.04 then one at 0.02 from that state: the time adds up, the scheme changes,
+    # and the second part is the run of a simulation restored there and set to the new dt.
+    sim = dpd.Simulation(scheme="aboba", dt=0.04, n=200, seed=4)
+    sim.run(steps=50)
+    snap = sim.snapshot()
+    sim.dt, sim.scheme = 0.02, "vv"
+    sim.run(steps=50)
+    assert (sim.step, sim.dt, sim.scheme) == (100, 0.02, "vv")
+    assert sim.time == pytest.approx(50 * 0.04 + 50 * 0.02, rel=1e-12)
+    again = dpd.Simulation(n=100)
+    again.restore(snap)
+    again.dt = 0.02
+    again.scheme = "vv"
+    again.run(steps=50)
+    assert np.array_equal(again.positions, sim.positions)
+    with pytest.raises(ValueError, match="invalid dt = 0: must be finite and > 0"):
+        sim.dt = 0.0
+    with pytest.raises(ValueError, match="invalid scheme"):
+        sim.scheme = "ABQ"
+
+
+def test_trajectories_from_python_are_the_files_of_dpd_run(tmp_path):
+    # The same state and steps recorded from Python and by a scene's [trajectory] table.
+    path = tmp_path / "py.xyz"
+    sim = dpd.Simulation(scheme="aboba", dt=0.05, n=100, seed=1)
+    sim.trajectory(path, every=0.25, fields=["velocity"])
+    sim.run(steps=20)
+    sim.trajectory(None)
+    scene = dpd.Simulation(scheme="aboba", dt=0.05, n=100, seed=1,
+                           trajectory={"file": str(tmp_path / "scene.xyz"), "every": 0.25,
+                                       "fields": ["velocity"]})
+    scene.run(steps=20)
+    frames = path.read_text()
+    assert frames.count("Properties=") == 5 and "time=1 dt=0.05" in frames
+    assert frames == (tmp_path / "scene.xyz").read_text()
+    sim.trajectory(tmp_path / "t.gsd", every=0.25)
+    with pytest.raises(ValueError, match="while a trajectory is being written"):
+        sim.dt = 0.01
+    with pytest.raises(ValueError, match="trajectory.every"):
+        sim.trajectory(tmp_path / "t.gsd", every=-1.0)
+    with pytest.raises(ValueError, match="unknown extension"):
+        sim.trajectory(tmp_path / "t.pdb", every=1.0)
+
+
+def test_the_module_has_a_version():
+    assert dpd.__version__ == "0.1.0"

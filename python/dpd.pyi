@@ -1,0 +1,149 @@
+"""Type stubs of the module `dpd` (python/src): what mypy and IDEs see.
+
+Every scene keyword is optional (absent: the scene file's value, else the default of
+docs/cli.md); tables take a dict of their keys.
+"""
+
+import os
+from typing import Any, Literal, Mapping, Sequence, TypedDict, Union
+
+import numpy as np
+import numpy.typing as npt
+from typing_extensions import Unpack
+
+__version__: str
+
+_Path = Union[str, "os.PathLike[str]"]
+_Table = Mapping[str, Any]
+_Field = Literal["velocity", "mass", "image", "observables"]
+
+class SceneKeys(TypedDict, total=False):
+    """The scene keys a keyword may set (docs/cli.md)."""
+
+    description: str
+    scheme: str
+    n: int
+    density: float
+    box: Sequence[float]
+    a: float
+    gamma: float
+    kbt: float
+    mass: float
+    weight_exponent: float
+    dt: float
+    time: float
+    average_fraction: float
+    sample_interval: float
+    seed: int
+    runs: int
+    threads: int
+    skin: float
+    shear_rate: float
+    body_force: float
+    walls: _Table
+    rdf: _Table
+    vacf: _Table
+    profile: _Table
+    sweep: _Table
+    trajectory: _Table
+    init: str
+    init_reset: bool
+    energy_balance: bool
+
+class BlowUpError(RuntimeError):
+    """A step produced a non-finite value or moved a particle too far."""
+
+def check(scheme: str) -> dict[str, Any]:
+    """The order analysis of a registry name or a scheme string (`dpd check --json`)."""
+
+def schemes() -> list[dict[str, Any]]:
+    """The registry of named schemes (`dpd schemes --json`)."""
+
+def sweep(
+    *,
+    schemes: Union[str, Sequence[str], None] = None,
+    dt_min: float | None = None,
+    dt_max: float | None = None,
+    dt_factor: float | None = None,
+    reference: str | None = None,
+    observable: Literal["configurational-temperature", "viscosity"] | None = None,
+    json: _Path | None = None,
+    fresh: bool = False,
+    scene: _Path | None = None,
+    **keys: Unpack[SceneKeys],
+) -> dict[str, Any]:
+    """Schemes over a geometric range of dt, as `dpd sweep`: the results file's content."""
+
+def kl(
+    scheme: str,
+    /,
+    *,
+    samples: int | None = None,
+    protocol_time: float | None = None,
+    sweeps_between: int | None = None,
+    scene: _Path | None = None,
+    **keys: Unpack[SceneKeys],
+) -> dict[str, Any]:
+    """The KL divergence of a scheme's configurations from exp(-U / k_B T) (`dpd kl --json`)."""
+
+class Snapshot:
+    """A copy of a simulation's state; `Simulation.restore` continues from it bit for bit."""
+
+    @property
+    def step(self) -> int: ...
+
+class Simulation:
+    """One scene's system stepped by one scheme."""
+
+    def __init__(
+        self,
+        *,
+        allow_inconsistent: bool = False,
+        scene: _Path | None = None,
+        **keys: Unpack[SceneKeys],
+    ) -> None: ...
+    def run(self, steps: int) -> None:
+        """Advance `steps` steps of dt (the GIL released; Ctrl-C stops it)."""
+
+    @property
+    def positions(self) -> npt.NDArray[np.float64]:
+        """(N, 3) positions in the box, row i for particle i."""
+
+    @positions.setter
+    def positions(self, value: npt.ArrayLike) -> None: ...
+    @property
+    def velocities(self) -> npt.NDArray[np.float64]:
+        """(N, 3) velocities p / m, row i for particle i."""
+
+    @velocities.setter
+    def velocities(self, value: npt.ArrayLike) -> None: ...
+    @property
+    def step(self) -> int: ...
+    @property
+    def time(self) -> float: ...
+    @property
+    def dt(self) -> float: ...
+    @dt.setter
+    def dt(self, value: float) -> None: ...
+    @property
+    def scheme(self) -> str: ...
+    @scheme.setter
+    def scheme(self, value: str) -> None: ...
+    @property
+    def box_lengths(self) -> list[float]: ...
+    @property
+    def scene(self) -> dict[str, Any]: ...
+    def observables(self) -> dict[str, float]:
+        """The instantaneous observables of the current state."""
+
+    def snapshot(self) -> Snapshot: ...
+    def restore(self, snapshot: Snapshot) -> None: ...
+    def save_checkpoint(self, path: _Path) -> None: ...
+    def load_checkpoint(self, path: _Path) -> None: ...
+    def trajectory(
+        self,
+        file: _Path | None,
+        every: float | None = None,
+        fields: Sequence[_Field] | None = None,
+    ) -> None:
+        """Write frames to `file` now and every `every` time units of the following runs."""
