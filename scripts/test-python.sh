@@ -38,8 +38,8 @@ PY
 "$venv/bin/pytest" -q python/tests docs/python.md --doctest-glob=python.md \
     -o doctest_optionflags="ELLIPSIS NORMALIZE_WHITESPACE"
 # The stubs against the tests' use of the module, and a wrong type that mypy must catch.
-"$venv/bin/mypy" --no-error-summary --check-untyped-defs python/tests
-if "$venv/bin/mypy" --no-error-summary -c 'import dpd; dpd.Simulation(dt="0.05")' >/dev/null; then
+"$venv/bin/mypy" --cache-dir "$cache/mypy" --no-error-summary --check-untyped-defs python/tests
+if "$venv/bin/mypy" --cache-dir "$cache/mypy" --no-error-summary -c 'import dpd; dpd.Simulation(dt="0.05")' >/dev/null; then
     echo "mypy accepted dpd.Simulation(dt=\"0.05\"): the stubs type nothing"
     exit 1
 fi
