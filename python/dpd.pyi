@@ -92,6 +92,45 @@ class Snapshot:
     @property
     def step(self) -> int: ...
 
+class Estimate:
+    """A mean over a run's samples and its standard error from block averages."""
+
+    @property
+    def mean(self) -> float: ...
+    @property
+    def stderr(self) -> float | None:
+        """None with fewer samples than blocks."""
+
+class Measurement:
+    """What `Simulation.measure` measured, in reduced units."""
+
+    @property
+    def samples(self) -> int: ...
+    @property
+    def interval(self) -> float:
+        """Time between samples."""
+
+    @property
+    def blocks(self) -> int: ...
+    @property
+    def kinetic_temperature(self) -> Estimate: ...
+    @property
+    def configurational_temperature(self) -> Estimate: ...
+    @property
+    def potential_energy(self) -> Estimate: ...
+    @property
+    def pressure(self) -> Estimate: ...
+    @property
+    def rdf(self) -> npt.NDArray[np.float64] | None:
+        """Rows (r, g(r)), one per bin."""
+
+    @property
+    def vacf(self) -> npt.NDArray[np.float64] | None:
+        """Rows (t, C(t)), t from 0 in steps of `interval`."""
+
+    @property
+    def diffusion(self) -> float | None: ...
+
 class Simulation:
     """One scene's system stepped by one scheme."""
 
@@ -104,6 +143,18 @@ class Simulation:
     ) -> None: ...
     def run(self, steps: int) -> None:
         """Advance `steps` steps of dt (the GIL released; Ctrl-C stops it)."""
+
+    def measure(
+        self,
+        steps: int,
+        *,
+        every: float | None = None,
+        blocks: int = 10,
+        rdf: bool | _Table | None = None,
+        vacf: bool | _Table | None = None,
+    ) -> Measurement:
+        """Run `steps` steps sampling every `every` time units: means with standard errors,
+        g(r) and the velocity autocorrelation."""
 
     @property
     def positions(self) -> npt.NDArray[np.float64]:

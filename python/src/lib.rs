@@ -6,6 +6,7 @@
 //! a blow-up `dpd.BlowUpError`.
 
 mod keys;
+mod measure;
 mod simulation;
 mod wait;
 
@@ -222,6 +223,8 @@ fn dpd_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(kl, m)?)?;
     m.add_class::<simulation::Simulation>()?;
     m.add_class::<simulation::Snapshot>()?;
+    m.add_class::<measure::Measurement>()?;
+    m.add_class::<measure::Estimate>()?;
     m.add("BlowUpError", m.py().get_type::<BlowUpError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())

@@ -2,6 +2,7 @@
 //! arrays, copied into snapshots, saved to checkpoints, recorded into trajectories.
 
 use crate::keys::{os_error, scene_of};
+use crate::measure::{self, sample_steps, Measurement, Samples};
 use crate::{invalid, to_python, wait, BlowUpError};
 use dpd_core::observe::thermo;
 use dpd_core::{AdvanceError, CheckpointError, ParamError, Scheme, System, Vec3};
@@ -22,7 +23,7 @@ use pythonize::depythonize;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-/// Steps between checks for Ctrl-C within `run`.
+/// Steps between checks for Ctrl-C within `run` and `measure`.
 const CHUNK: u64 = 50;
 
 /// Simulation(*, allow_inconsistent=False, scene=None, scheme=None, dt=None, n=None, density=None, box=None, a=None, gamma=None, kbt=None, mass=None, weight_exponent=None, seed=None, threads=None, skin=None, shear_rate=None, body_force=None, walls=None, init=None, init_reset=None, trajectory=None, time=None, average_fraction=None, sample_interval=None, runs=None, energy_balance=None, rdf=None, vacf=None, profile=None, sweep=None, description=None)
@@ -146,6 +147,9 @@ fn checkpoint_error(e: CheckpointError) -> PyErr {
     }
 }
 
+/// Steps between samples and what takes them, for `Simulation::advance`.
+type Sampling<'a> = (u64, &'a mut (dyn FnMut(&mut System) + Send));
+
 /// What stopped `run`: a blow-up (or a scheme the system cannot run), or a trajectory frame
 /// that could not be written.
 enum Stopped {
@@ -199,34 +203,36 @@ impl Simulation {
     /// they fall due. Raises BlowUpError (the state is the one before the failing step) or,
     /// on Ctrl-C, KeyboardInterrupt after the current chunk of steps.
     fn run(&mut self, py: Python<'_>, steps: i64) -> PyResult<()> {
-        let steps = u64::try_from(steps)
-            .map_err(|_| invalid(format!("invalid steps = {steps}: must be >= 0")))?;
-        let stop = AtomicBool::new(false);
-        let (system, scheme, pool) = (&mut self.system, &self.scheme, &self.pool);
-        let recorder = &mut self.recorder;
-        let outcome = wait::interruptible(py, &stop, || {
-            pool.install(|| {
-                let end = system.step() + steps;
-                while system.step() < end && !stop.load(Ordering::Relaxed) {
-                    let next = recorder
-                        .as_ref()
-                        .map_or(u64::MAX, |r| r.next_stop(system.step()));
-                    let chunk = (end - system.step()).min(CHUNK).min(next - system.step());
-                    system
-                        .advance(scheme.as_ref(), chunk)
-                        .map_err(Stopped::Advance)?;
-                    if let Some(r) = recorder.as_mut() {
-                        r.after_steps(system).map_err(Stopped::Write)?;
-                    }
-                }
-                Ok(())
-            })
-        })?;
-        outcome.map_err(|e| match e {
-            Stopped::Advance(AdvanceError::BlowUp(e)) => BlowUpError::new_err(e.to_string()),
-            Stopped::Advance(AdvanceError::Scheme(e)) => invalid(e),
-            Stopped::Write(e) => invalid(e),
-        })
+        self.advance(py, steps, None)
+    }
+
+    /// measure(steps, *, every=None, blocks=10, rdf=None, vacf=None)
+    /// --
+    ///
+    /// Run `steps` steps as `run` does, sampling the state every `every` time units (default:
+    /// the scene's sample_interval; rounded to whole steps), and return a Measurement: the
+    /// means of k_B T_K, k_B T_C, the potential energy and the pressure with standard errors
+    /// from `blocks` blocks of consecutive samples, and, with `rdf` or `vacf`, g(r) and the
+    /// velocity autocorrelation of the same samples. `rdf` and `vacf` are the scene's tables
+    /// of that name (None: the scene's, if it has one; True: on, with the scene's keys or the
+    /// defaults; a dict: on, with those keys; False: off). The state before is not sampled.
+    #[pyo3(signature = (steps, *, every=None, blocks=10, rdf=None, vacf=None))]
+    fn measure(
+        &mut self,
+        py: Python<'_>,
+        steps: i64,
+        every: Option<f64>,
+        blocks: usize,
+        rdf: Option<Bound<'_, PyAny>>,
+        vacf: Option<Bound<'_, PyAny>>,
+    ) -> PyResult<Measurement> {
+        let dt = self.system.dt();
+        let every = sample_steps(every.unwrap_or(self.scene.run.sample_interval), dt)?;
+        let observe = measure::observe(&self.scene.observe, rdf.as_ref(), vacf.as_ref())?;
+        let mut samples =
+            Samples::new(&self.system, &observe, every as f64 * dt).map_err(invalid)?;
+        self.advance(py, steps, Some((every, &mut |sys| samples.record(sys))))?;
+        Ok(samples.finish(py, blocks))
     }
 
     /// Positions, an (N, 3) array wrapped into the box, row i for particle i (the order in
@@ -464,6 +470,55 @@ impl Simulation {
 }
 
 impl Simulation {
+    /// Advance `steps` steps with the GIL released (Ctrl-C stops them after the current
+    /// chunk), writing the trajectory's frames as they fall due and handing the state to
+    /// the sampler of `sampling` after each of its number of steps.
+    fn advance(
+        &mut self,
+        py: Python<'_>,
+        steps: i64,
+        sampling: Option<Sampling<'_>>,
+    ) -> PyResult<()> {
+        let steps = u64::try_from(steps)
+            .map_err(|_| invalid(format!("invalid steps = {steps}: must be >= 0")))?;
+        let stop = AtomicBool::new(false);
+        let (system, scheme, pool) = (&mut self.system, &self.scheme, &self.pool);
+        let recorder = &mut self.recorder;
+        let outcome = wait::interruptible(py, &stop, || {
+            pool.install(|| {
+                let (start, end) = (system.step(), system.step() + steps);
+                let mut sampling = sampling;
+                while system.step() < end && !stop.load(Ordering::Relaxed) {
+                    let done = system.step() - start;
+                    let frame = recorder
+                        .as_ref()
+                        .map_or(u64::MAX, |r| r.next_stop(system.step()));
+                    let sample = sampling
+                        .as_ref()
+                        .map_or(u64::MAX, |(every, _)| start + (done / every + 1) * every);
+                    let chunk = (end.min(frame).min(sample) - system.step()).min(CHUNK);
+                    system
+                        .advance(scheme.as_ref(), chunk)
+                        .map_err(Stopped::Advance)?;
+                    if let Some(r) = recorder.as_mut() {
+                        r.after_steps(system).map_err(Stopped::Write)?;
+                    }
+                    if let Some((every, sample)) = sampling.as_mut() {
+                        if (system.step() - start).is_multiple_of(*every) {
+                            sample(system);
+                        }
+                    }
+                }
+                Ok(())
+            })
+        })?;
+        outcome.map_err(|e| match e {
+            Stopped::Advance(AdvanceError::BlowUp(e)) => BlowUpError::new_err(e.to_string()),
+            Stopped::Advance(AdvanceError::Scheme(e)) => invalid(e),
+            Stopped::Write(e) => invalid(e),
+        })
+    }
+
     /// Refuse `what` while a trajectory is being written: its frames count steps of one dt
     /// and follow the particles' images from step to step.
     fn no_trajectory(&self, what: &str) -> PyResult<()> {

@@ -54,6 +54,27 @@ pub fn block_mean(values: &[f64], blocks: usize) -> Option<(f64, f64)> {
     Some((means.mean(), (means.variance() / blocks as f64).sqrt()))
 }
 
+/// The standard error of the ratio `sum numerator / sum denominator` of two time series
+/// sampled together (k_B T_C's sums), from `blocks` consecutive blocks of equal length: the
+/// standard deviation of the blocks' ratios over `sqrt(blocks)`, valid as for [`block_mean`].
+/// The first `len % blocks` samples are left out so that the blocks are equal. `None` with
+/// fewer than `blocks` samples or fewer than 2 blocks.
+pub fn block_ratio_error(numerator: &[f64], denominator: &[f64], blocks: usize) -> Option<f64> {
+    let n = numerator.len().min(denominator.len());
+    if blocks < 2 || n < blocks {
+        return None;
+    }
+    let (len, skip) = (n / blocks, n % blocks);
+    let mut ratios = Running::default();
+    for (num, den) in numerator[skip..n]
+        .chunks_exact(len)
+        .zip(denominator[skip..n].chunks_exact(len))
+    {
+        ratios.push(num.iter().sum::<f64>() / den.iter().sum::<f64>());
+    }
+    Some((ratios.variance() / blocks as f64).sqrt())
+}
+
 /// Averages of [`Thermo`] samples over the last `fraction` of a run of `total_steps` steps.
 #[derive(Clone, Debug)]
 pub struct ThermoAverages {
@@ -148,6 +169,19 @@ mod tests {
         assert_eq!(mean, 2.5);
         approx::assert_relative_eq!(error, (5.0f64 / 3.0).sqrt() / 2.0);
         assert_eq!(block_mean(&values[..3], 4), None);
+    }
+
+    #[test]
+    fn block_ratio_error_is_the_spread_of_the_blocks_ratios() {
+        // Blocks (2, 2) / (1, 1) and (6, 6) / (2, 2) after the left-out first sample: ratios 2
+        // and 3, whose standard deviation is sqrt(1/2), so the error is 1/2. With denominators
+        // 1 the blocks' ratios are their means: the error of block_mean.
+        let (num, den) = ([7.0, 2.0, 2.0, 6.0, 6.0], [5.0, 1.0, 1.0, 2.0, 2.0]);
+        approx::assert_relative_eq!(block_ratio_error(&num, &den, 2).unwrap(), 0.5);
+        let values = [9.0, 0.5, 1.5, 2.0, 2.0, 2.5, 3.5, 4.0, 4.0];
+        let error = block_ratio_error(&values, &[1.0; 9], 4).unwrap();
+        approx::assert_relative_eq!(error, block_mean(&values, 4).unwrap().1);
+        assert_eq!(block_ratio_error(&num[..1], &den[..1], 2), None);
     }
 
     #[test]

@@ -12,7 +12,7 @@ mod stress;
 mod thermo;
 mod vacf;
 
-pub use average::{block_mean, Running, ThermoAverages, ThermoSummary};
+pub use average::{block_mean, block_ratio_error, Running, ThermoAverages, ThermoSummary};
 pub use energy::{balance_defined, hamiltonian, potential_energy, Balance, EnergyBalance};
 pub use profile::{fit_line, write_profile_csv, Profile, ProfileRow};
 pub use rdf::Rdf;
