@@ -1,7 +1,8 @@
-//! docs/cli.md cannot drift from the program: each flag of each command (read from its
-//! `--help`) is named in the command's section, or for the scene flags in the scene table, and
-//! each flag a section names exists; the scene table lists every scene key with its flag; and
-//! each JSON field table lists exactly the fields the program writes there.
+//! docs/cli.md and docs/scenes.md cannot drift from the program: each flag of each command
+//! (read from its `--help`) is named in the command's section of docs/cli.md, or for the scene
+//! flags in docs/scenes.md, and each flag a section names exists; the scene table of
+//! docs/scenes.md lists every scene key with its flag; and each JSON field table of docs/cli.md
+//! lists exactly the fields the program writes there.
 mod cli_support;
 
 use cli_support::{dpd, json, write};
@@ -10,6 +11,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
 const CLI_MD: &str = include_str!("../../docs/cli.md");
+const SCENES_MD: &str = include_str!("../../docs/scenes.md");
 
 type Names = BTreeSet<String>;
 
@@ -90,13 +92,9 @@ fn command_of(heading: &str) -> Option<String> {
     Some(words.join(" "))
 }
 
-/// The section of the scene keys.
+/// The page of the scene keys.
 fn scenes_section() -> &'static str {
-    sections()
-        .into_iter()
-        .find(|(h, _)| *h == "Scenes")
-        .expect("docs/cli.md has a section `## Scenes`")
-        .1
+    SCENES_MD
 }
 
 /// Every `--flag` named in `text`.
@@ -165,7 +163,7 @@ fn every_flag_is_documented_in_its_section_and_every_documented_flag_exists() {
     for flag in &scene_flags {
         assert!(
             commands["run"].contains(flag),
-            "docs/cli.md's Scenes section names --{flag}, which `dpd run` does not have"
+            "docs/scenes.md names --{flag}, which `dpd run` does not have"
         );
     }
     for (command, flags) in &commands {
@@ -195,13 +193,13 @@ fn every_flag_is_documented_in_its_section_and_every_documented_flag_exists() {
     }
 }
 
-/// The scene table of docs/cli.md: per row, the key names (a `[table]` first for the keys of
+/// The scene table of docs/scenes.md: per row, the key names (a `[table]` first for the keys of
 /// a table) and the flags of the flag column.
 fn scene_table() -> Vec<(Vec<String>, Names)> {
     let (header, rows) = tables(scenes_section())
         .into_iter()
         .find(|(h, _)| h[0] == "key" && h[1] == "flag")
-        .expect("docs/cli.md's Scenes section has a table `| key | flag | ...`");
+        .expect("docs/scenes.md has a table `| key | flag | ...`");
     assert_eq!(header.len(), 4);
     rows.iter()
         .map(|r| (names_in(&r[0]), flags_in(&r[1])))
@@ -493,7 +491,7 @@ fn every_json_field_and_scene_key_is_documented_and_every_documented_one_is_writ
     assert_eq!(
         top,
         keys(&scene_refs),
-        "docs/cli.md's scene table and the keys of a scene"
+        "docs/scenes.md's scene table and the keys of a scene"
     );
     for (names, _) in rows.iter().filter(|(n, _)| n[0].starts_with('[')) {
         let table = names[0].trim_matches(['[', ']']);
@@ -502,7 +500,7 @@ fn every_json_field_and_scene_key_is_documented_and_every_documented_one_is_writ
         assert_eq!(
             doc,
             keys(&sub),
-            "docs/cli.md's scene table, `[{table}]`, and the keys of that table"
+            "docs/scenes.md's scene table, `[{table}]`, and the keys of that table"
         );
     }
 
@@ -522,7 +520,7 @@ fn every_json_field_and_scene_key_is_documented_and_every_documented_one_is_writ
             .collect();
         assert_eq!(
             flags, &expected,
-            "docs/cli.md's scene table, the flag column of {names:?}"
+            "docs/scenes.md's scene table, the flag column of {names:?}"
         );
     }
 }

@@ -31,7 +31,7 @@ const CHUNK: u64 = 50;
 ///
 /// The initial state of a scene (uniform positions, Maxwell velocities, as the first run of
 /// `dpd run`; or the frame of `init`) with its scheme. Every keyword is the scene key of the
-/// same name (docs/cli.md lists them; tables such as `walls` or `trajectory` take a dict of
+/// same name (docs/scenes.md lists them; tables such as `walls` or `trajectory` take a dict of
 /// their keys); `scene` names a TOML scene file whose keys they override. A scene with a
 /// `trajectory` table records it during `run`, as `dpd run` does. Reduced DPD units.
 /// Raises TypeError for an unknown keyword or a value of the wrong type, ValueError for an
