@@ -4,16 +4,18 @@
 //! step counter, positions, momenta, masses, types and ids in storage order, neighbour skin, the Lees-Edwards state
 //! (shear rate, offset, travel), the walls with their frozen particles, the body force, the positions and the Lees-Edwards state of the last
 //! neighbour-list build (which fix the sweep order and the next rebuild), the name of the
-//! scheme, and what a scheme carries between steps (the full forces of velocity Verlet, with
+//! scheme, the topology (bonds and angles by id, from version 8), and what a scheme carries between steps (the full forces of velocity Verlet, with
 //! their noise). Pair geometry and conservative forces are not stored: they are pure functions
 //! of the positions and the list, recomputed in the same pair order, hence bitwise equal. A restarted run
 //! therefore continues bit for bit like an uninterrupted one.
 //!
 //! File layout: 8 magic bytes `DPDCHKPT`, format version (u32 LE), payload length (u64 LE),
-//! CRC-32 of the payload (u32 LE), payload (bincode). Writes go to a temporary file in the same
+//! CRC-32 of the payload (u32 LE), payload (bincode: the fields of `Payload`, then, from
+//! version 8, the optional topology; version 7 files, without it, still load). Writes go to a temporary file in the same
 //! directory, are synced, then renamed over the target, so an interrupted write never destroys
 //! the previous checkpoint.
 
+use crate::bonded::Topology;
 use crate::boundary::{LeesEdwards, PeriodicBox};
 use crate::error::CheckpointError;
 use crate::params::Params;
@@ -25,7 +27,9 @@ use std::io::Write;
 use std::path::Path;
 
 const MAGIC: &[u8; 8] = b"DPDCHKPT";
-const VERSION: u32 = 7;
+const VERSION: u32 = 8;
+/// The oldest version read: version 7 is version 8 without the topology.
+const OLDEST: u32 = 7;
 const HEADER: usize = 8 + 4 + 8 + 4;
 
 #[derive(Serialize, Deserialize)]
@@ -103,10 +107,12 @@ impl System {
             }),
             body_force: self.body_force(),
         };
-        let data = bincode::serialize(&payload).map_err(|e| CheckpointError::Decode {
+        let encode = |e: bincode::Error| CheckpointError::Decode {
             path: path.display().to_string(),
             message: e.to_string(),
-        })?;
+        };
+        let mut data = bincode::serialize(&payload).map_err(encode)?;
+        bincode::serialize_into(&mut data, &self.topology()).map_err(encode)?;
         let mut bytes = Vec::with_capacity(HEADER + data.len());
         bytes.extend_from_slice(MAGIC);
         bytes.extend_from_slice(&VERSION.to_le_bytes());
@@ -146,11 +152,12 @@ impl System {
         }
         let word = |r: std::ops::Range<usize>| bytes[r].to_vec();
         let version = u32::from_le_bytes(word(8..12).try_into().unwrap_or_default());
-        if version != VERSION {
+        if !(OLDEST..=VERSION).contains(&version) {
             return Err(CheckpointError::Version {
                 path: name,
                 found: version,
-                expected: VERSION,
+                oldest: OLDEST,
+                newest: VERSION,
             });
         }
         let len = u64::from_le_bytes(word(12..20).try_into().unwrap_or_default());
@@ -166,10 +173,17 @@ impl System {
         if crc32fast::hash(data) != crc {
             return Err(CheckpointError::Corrupt { path: name });
         }
-        let payload: Payload = bincode::deserialize(data).map_err(|e| CheckpointError::Decode {
+        let decode = |e: bincode::Error| CheckpointError::Decode {
             path: name.clone(),
             message: e.to_string(),
-        })?;
+        };
+        let mut rest = data;
+        let payload: Payload = bincode::deserialize_from(&mut rest).map_err(decode)?;
+        let topology: Option<Topology> = if version >= 8 {
+            bincode::deserialize_from(&mut rest).map_err(decode)?
+        } else {
+            None
+        };
         let invalid = |source| CheckpointError::Invalid {
             path: name.clone(),
             source,
@@ -191,6 +205,9 @@ impl System {
         if let Some(g) = payload.body_force {
             builder = builder.body_force(g);
         }
+        if let Some(t) = topology {
+            builder = builder.topology(t);
+        }
         let mut sys = builder.build().map_err(invalid)?;
         sys.resume(Continuation {
             step: payload.step,
@@ -202,5 +219,69 @@ impl System {
         })
         .map_err(invalid)?;
         Ok((sys, payload.scheme))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bonded::{Bond, BondStyle};
+    use crate::init::equilibrium_box;
+
+    fn system(topology: Option<Topology>) -> System {
+        let b = equilibrium_box(Params::builder().build().unwrap(), 200, 3.0, 3).unwrap();
+        match topology {
+            Some(t) => b.topology(t),
+            None => b,
+        }
+        .build()
+        .unwrap()
+    }
+
+    #[test]
+    fn the_topology_is_kept() {
+        let mut t = Topology::builder(200);
+        t.bond_types = vec![BondStyle::Fene {
+            k: 30.0,
+            r_max: 1.5,
+        }];
+        t.bonds = vec![Bond {
+            i: 7,
+            j: 3,
+            kind: 0,
+        }];
+        let t = t.build().unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("c.chk");
+        let mut sys = system(Some(t.clone()));
+        sys.pairs();
+        sys.save_checkpoint(&path, "ABOBA").unwrap();
+        let (back, _) = System::load_checkpoint(&path).unwrap();
+        assert_eq!(back.topology(), Some(&t));
+        assert_eq!(back.ids(), sys.ids());
+    }
+
+    /// A version 7 file (version 8 without the topology that follows the payload) loads.
+    #[test]
+    fn version_7_checkpoints_load() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("c.chk");
+        let sys = system(None);
+        sys.save_checkpoint(&path, "ABOBA").unwrap();
+        let bytes = std::fs::read(&path).unwrap();
+        let data = &bytes[HEADER..bytes.len() - 1];
+        assert_eq!(bytes[bytes.len() - 1], 0, "no topology: bincode's None");
+        let mut old = MAGIC.to_vec();
+        old.extend_from_slice(&7u32.to_le_bytes());
+        old.extend_from_slice(&(data.len() as u64).to_le_bytes());
+        old.extend_from_slice(&crc32fast::hash(data).to_le_bytes());
+        old.extend_from_slice(data);
+        std::fs::write(&path, old).unwrap();
+        let (back, scheme) = System::load_checkpoint(&path).unwrap();
+        assert_eq!(
+            (back.positions(), scheme.as_str()),
+            (sys.positions(), "ABOBA")
+        );
+        assert!(back.topology().is_none());
     }
 }

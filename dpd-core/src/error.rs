@@ -116,11 +116,12 @@ pub enum CheckpointError {
     },
     #[error("checkpoint {path} is not a dpd checkpoint (bad magic bytes)")]
     NotACheckpoint { path: String },
-    #[error("checkpoint {path} has format version {found}; this build reads version {expected}")]
+    #[error("checkpoint {path} has format version {found}; this build reads versions {oldest} to {newest}")]
     Version {
         path: String,
         found: u32,
-        expected: u32,
+        oldest: u32,
+        newest: u32,
     },
     #[error("checkpoint {path} is truncated: header announces {expected} bytes of data, file holds {found}")]
     Truncated {

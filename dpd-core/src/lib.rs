@@ -15,6 +15,7 @@
 //!   order does not depend on the thread count; units of one colour are processed in parallel.
 
 mod avx2;
+pub mod bonded;
 pub mod boundary;
 pub mod checkpoint;
 pub mod chunked;
@@ -51,6 +52,7 @@ pub(crate) fn on_threads<R: Send>(threads: usize, f: impl FnOnce() -> R + Send) 
         .install(f)
 }
 
+pub use bonded::Topology;
 pub use boundary::{LeesEdwards, PeriodicBox};
 pub use dpd_ir::{Flow, ForceGroup, Stage, SweepOrder};
 pub use error::{AdvanceError, BlowUp, CheckpointError, ParamError};

@@ -1,6 +1,7 @@
 //! [`SystemBuilder`]: the validated construction of a [`System`].
 
 use super::{Counters, System, DEFAULT_SKIN};
+use crate::bonded::{Located, Topology};
 use crate::boundary::{LeesEdwards, PeriodicBox};
 use crate::error::{finite_vectors, positive, ParamError};
 use crate::neighbour::VerletList;
@@ -27,6 +28,7 @@ pub struct SystemBuilder {
     walls: Option<Walls>,
     frozen: Option<Vec<bool>>,
     body_force: Option<Vec3>,
+    topology: Option<Topology>,
 }
 
 impl SystemBuilder {
@@ -85,6 +87,12 @@ impl SystemBuilder {
     /// Poiseuille flow. It enters the B and F kicks and the T sweeps (after the pair updates).
     pub fn body_force(mut self, force: Vec3) -> Self {
         self.body_force = Some(force);
+        self
+    }
+    /// Bonds and angles between the particles, by id (see [`Topology`]); its particle count
+    /// must be the system's. Without this call the system has no bonded forces.
+    pub fn topology(mut self, topology: Topology) -> Self {
+        self.topology = Some(topology);
         self
     }
     pub fn build(self) -> Result<System, ParamError> {
@@ -202,6 +210,16 @@ impl SystemBuilder {
                 Some(FrozenWalls::new(w, frozen, &q)?)
             }
         };
+        if let Some(t) = &self.topology {
+            if t.particles() != n {
+                return Err(ParamError::new(
+                    "topology",
+                    format!("{} particles", t.particles()),
+                    format!("must be built for the system's {n} particles"),
+                ));
+            }
+        }
+        let bonded = self.topology.map(|t| Located::new(t, &id));
         let inv_mass = match &walls {
             None => mass.iter().map(|m| 1.0 / m).collect(),
             Some(w) => mass
@@ -215,6 +233,7 @@ impl SystemBuilder {
             shear,
             walls,
             body_force: self.body_force,
+            bonded,
             params: self.params,
             q: vec![Vec3::zeros(); n],
             p,
@@ -264,6 +283,7 @@ impl System {
             walls: None,
             frozen: None,
             body_force: None,
+            topology: None,
         }
     }
 }

@@ -1,5 +1,6 @@
 //! The state of a DPD system and the caches that let sub-flows share evaluations.
 
+use crate::bonded::{Located, Topology};
 use crate::boundary::{LeesEdwards, PeriodicBox};
 use crate::error::{finite_vectors, ParamError};
 use crate::neighbour::VerletList;
@@ -58,6 +59,9 @@ pub struct System {
     /// External force on every mobile particle (Poiseuille flow), added to the conservative
     /// and full forces.
     body_force: Option<Vec3>,
+    /// Bonds and angles, by id and in storage indices; `None`: no topology, and no code path
+    /// looks at bonds.
+    bonded: Option<Located>,
     params: Params,
     q: Vec<Vec3>,
     p: Vec<Vec3>,
@@ -136,6 +140,15 @@ impl System {
     /// Which particles are frozen (`None` without walls).
     pub fn frozen(&self) -> Option<&[bool]> {
         self.walls.as_ref().map(|w| &w.frozen[..])
+    }
+    /// The bonds and angles, by particle id, if the system was built with a topology.
+    pub fn topology(&self) -> Option<&Topology> {
+        self.bonded.as_ref().map(Located::topology)
+    }
+    /// The bonds and angles in storage indices.
+    #[cfg(test)]
+    pub(crate) fn located(&self) -> Option<&Located> {
+        self.bonded.as_ref()
     }
     /// The external force on mobile particles, if any.
     pub fn body_force(&self) -> Option<Vec3> {
@@ -355,6 +368,9 @@ impl System {
             permute(&mut w.frozen, order);
             permute(&mut w.velocity_x, order);
         }
+        if let Some(b) = &mut self.bonded {
+            b.locate(&self.id);
+        }
         // Positions changed or the list was never built: the conservative forces are stale;
         // full forces can be valid (restored from a checkpoint) and move with their particles.
         debug_assert!(!self.conservative_at.is_fresh(self.positions));
@@ -384,6 +400,9 @@ impl System {
         if let Some(w) = &mut self.walls {
             permute(&mut w.frozen, &order);
             permute(&mut w.velocity_x, &order);
+        }
+        if let Some(b) = &mut self.bonded {
+            b.locate(&self.id);
         }
         self.list.invalidate();
     }
