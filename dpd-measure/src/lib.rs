@@ -13,6 +13,7 @@
 
 pub mod aggregate;
 pub mod batch;
+pub mod chains;
 pub mod cost;
 pub mod critical;
 pub mod data_file;
@@ -31,7 +32,7 @@ pub mod sweep;
 pub use aggregate::Aggregate;
 pub use batch::Batch;
 pub use critical::{critical_dt, Critical};
-pub use result::{Job, RunResult, Viscosity};
+pub use result::{ChainSizes, Job, RunResult, Viscosity};
 pub use runner::{run, Control};
 pub use scene::{Keys, Observable, Scene, SceneError};
 pub use sweep::{SchemeSummary, SweepResults};

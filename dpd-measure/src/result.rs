@@ -68,6 +68,9 @@ pub struct RunResult {
     /// r_c that are of the same species (null for a species without neighbours).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub like_neighbours: Option<BTreeMap<String, Option<f64>>>,
+    /// With bonds: the bond lengths and the sizes of the linear chains.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub chains: Option<ChainSizes>,
     /// Diffusion coefficient from the velocity autocorrelation, with `[vacf]` in the scene.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub diffusion: Option<f64>,
@@ -100,6 +103,23 @@ impl RunResult {
             seed: self.seed,
         }
     }
+}
+
+/// The bonds and chains of a run, averaged over its samples (lengths in r_c).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct ChainSizes {
+    /// Linear chains (molecules whose beads form one unbranched, open path of bonds).
+    pub chains: usize,
+    /// Mean bond length, over every bond.
+    pub bond_length: f64,
+    /// `[r, p(r)]` per bin of width 0.02, from 0 to the longest bond seen: the probability
+    /// density of the bond length (sum of p x 0.02 = 1).
+    pub bond_length_histogram: Vec<[f64; 2]>,
+    /// Mean squared end-to-end distance of the linear chains (null without any).
+    pub end_to_end_squared: Option<f64>,
+    /// Mean squared radius of gyration of the linear chains, equal bead weights (null without
+    /// any).
+    pub gyration_squared: Option<f64>,
 }
 
 /// The shear viscosity of a run; `None` values (JSON null) when too few samples were taken.

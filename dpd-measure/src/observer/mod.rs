@@ -8,6 +8,7 @@
 //! | `rdf.rs` | g(r) | `[rdf]` |
 //! | `pair_rdf.rs` | g(r) of each pair of species | `[rdf]` with `[[species]]` |
 //! | `neighbours.rs` | the fraction of like neighbours of each species | `like_neighbours` |
+//! | `chains.rs` | bond lengths, end-to-end distance and radius of gyration of chains | bonds |
 //! | `vacf.rs` | the diffusion coefficient | `[vacf]` |
 //! | `viscosity.rs` | the shear viscosity | a non-zero `shear_rate` |
 //! | `profile.rs` | slab profiles | `[profile]` |
@@ -28,6 +29,7 @@
 //! step, in the averaging window (the last `average_fraction` of the run); observers are
 //! called in the order of [`for_run`].
 
+mod chains;
 mod data_out;
 mod energy;
 mod interface;
@@ -52,11 +54,12 @@ type Make = for<'a> fn(&Setup<'a>, &mut System) -> Result<Option<Boxed<'a>>, Par
 
 /// The observers of a run, in the order they are called.
 pub fn for_run<'a>(setup: &Setup<'a>, sys: &mut System) -> Result<Vec<Boxed<'a>>, ParamError> {
-    const MAKE: [Make; 11] = [
+    const MAKE: [Make; 12] = [
         thermo::new,
         rdf::new,
         pair_rdf::new,
         neighbours::new,
+        chains::new,
         vacf::new,
         viscosity::new,
         profile::new,

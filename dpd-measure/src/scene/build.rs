@@ -1,9 +1,12 @@
 //! The system of a scene: its sections put together into a `dpd_core::System`, and where the
 //! trajectories of its runs count from.
 
-use super::Scene;
+use super::molecules::{ChainPlan, Context};
+use super::{check, Scene};
+use crate::chains;
 use crate::data_file::same_repulsions;
 use crate::start::{initial_state, InitSpec, Origin};
+use dpd_core::bonded::{Topology, TopologyBuilder};
 use dpd_core::init::{freeze_outside, maxwell_momenta, uniform_positions};
 use dpd_core::{ParamError, Params, System, Vec3};
 
@@ -38,12 +41,15 @@ impl Scene {
                 (initial_state(&start.frame, &masses)?, params)
             }
             None => {
-                let kinds = match self.species.species {
-                    Some(_) => self.species.kinds(n)?,
-                    None => vec![0; n],
+                let plans = self.chain_plans()?;
+                let kinds = match (self.species.species.is_some(), plans.is_empty()) {
+                    (_, false) => chains::kinds(&plans, &self.type_counts()?),
+                    (true, true) => self.species.kinds(n)?,
+                    (false, true) => vec![0; n],
                 };
                 let masses: Vec<f64> = kinds.iter().map(|&t| type_masses[t as usize]).collect();
-                let q = uniform_positions(&bx, n, seed);
+                let mut q = chains::random_walks(&plans, &bx, seed);
+                q.extend(uniform_positions(&bx, n - q.len(), seed));
                 let p = maxwell_momenta(&masses, physics.kbt, seed);
                 ((q, p, masses, kinds), self.params()?)
             }
@@ -60,6 +66,9 @@ impl Scene {
             let frozen = freeze_outside(&walls, &q, &mut p);
             builder = builder.walls(walls).frozen(frozen);
         }
+        if let Some(topology) = self.topology()? {
+            builder = builder.topology(topology);
+        }
         if let Some(k) = physics.shear_rate {
             builder = builder.shear_rate(k);
         }
@@ -67,6 +76,57 @@ impl Scene {
             builder = builder.body_force(Vec3::new(g, 0.0, 0.0));
         }
         builder.momenta(p).build()
+    }
+
+    /// The scene's chains resolved (none without `[[molecules]]`), every molecules key
+    /// checked; chains are refused with `[walls]`, `shear_rate` and `init`.
+    pub fn chain_plans(&self) -> Result<Vec<ChainPlan>, ParamError> {
+        let (particles, names) = (self.geometry.particles(), self.type_names(1));
+        let counts = self.type_counts()?;
+        let cx = Context {
+            species: &names,
+            counts: &counts,
+            kbt: self.physics.kbt,
+            shortest_edge: self.geometry.shortest_edge()?,
+        };
+        let plans = self.molecules.plan(particles, &cx)?;
+        if !plans.is_empty() {
+            for (key, set) in [
+                ("walls", self.geometry.walls.is_some()),
+                ("shear_rate", self.physics.sheared()),
+                ("init", self.geometry.init.is_some()),
+            ] {
+                let why = "cannot be combined with [[molecules]] yet";
+                check::require(key, "set", !set, why)?;
+            }
+        }
+        Ok(plans)
+    }
+
+    /// The bonds and angles of the scene's chains (`None` without `[[molecules]]`).
+    pub fn topology(&self) -> Result<Option<Topology>, ParamError> {
+        let plans = self.chain_plans()?;
+        if plans.is_empty() {
+            return Ok(None);
+        }
+        let (bonds, angles) = chains::bonds_and_angles(&plans);
+        let topology = TopologyBuilder {
+            particles: self.geometry.particles(),
+            bond_types: self.molecules.bond_styles()?,
+            bonds,
+            angle_types: self.molecules.angle_styles()?,
+            angles,
+        };
+        topology.build().map(Some)
+    }
+
+    /// The particles of each type: the species' counts, or all of them of the one type.
+    fn type_counts(&self) -> Result<Vec<usize>, ParamError> {
+        let n = self.geometry.particles();
+        match self.species.species {
+            Some(_) => self.species.counts(n),
+            None => Ok(vec![n]),
+        }
     }
 
     /// The pair-force parameters: the physics section's, with the species' repulsions.

@@ -11,6 +11,7 @@
 //! | [`RunSpec`] | `run.rs` | `scheme`, `dt`, `time`, `average_fraction`, `sample_interval`, `seed`, `runs`, `threads` |
 //! | [`Physics`] | `physics.rs` | `a`, `gamma`, `kbt`, `mass`, `weight_exponent`, `shear_rate`, `body_force` |
 //! | [`Species`] | `species.rs` | `[[species]]`, `[pairs]` |
+//! | [`Molecules`] | `molecules.rs` | `[[bond_types]]`, `[[angle_types]]`, `[[molecules]]` |
 //! | [`Geometry`] | `geometry.rs` | `n`, `density`, `box`, `skin`, `init`, `init_reset`, `[walls]` |
 //! | [`Observe`] | `observe.rs` | `[rdf]`, `[vacf]`, `[profile]`, `energy_balance`, `like_neighbours` |
 //! | [`Output`] | `output.rs` | `description`, `[trajectory]`, `write_data` |
@@ -26,6 +27,7 @@
 mod build;
 mod check;
 pub mod geometry;
+pub mod molecules;
 pub mod observe;
 pub mod output;
 pub mod physics;
@@ -36,6 +38,7 @@ pub mod sweep;
 
 pub use check::{MAX_PARTICLES, MAX_STEPS, MAX_THREADS_PER_CORE};
 pub use geometry::{Geometry, WallSpec};
+pub use molecules::{AngleType, BondType, ChainSpec, Molecules};
 pub use observe::{Observe, ProfileSpec, RdfSpec, VacfSpec};
 pub use output::{Field, Output, TrajectorySpec};
 pub use physics::Physics;
@@ -61,6 +64,8 @@ pub struct Scene {
     pub physics: Physics,
     #[serde(flatten)]
     pub species: Species,
+    #[serde(flatten)]
+    pub molecules: Molecules,
     #[serde(flatten)]
     pub geometry: Geometry,
     #[serde(flatten)]
@@ -95,6 +100,7 @@ impl Scene {
             run: take(&mut keys).map_err(error)?,
             physics: take(&mut keys).map_err(error)?,
             species: take(&mut keys).map_err(error)?,
+            molecules: take(&mut keys).map_err(error)?,
             geometry: take(&mut keys).map_err(error)?,
             observe: take(&mut keys).map_err(error)?,
             sweep: take_table(&mut keys, "sweep").map_err(error)?,
@@ -104,6 +110,7 @@ impl Scene {
             names::<RunSpec>(),
             names::<Physics>(),
             names::<Species>(),
+            names::<Molecules>(),
             names::<Geometry>(),
             names::<Observe>(),
             &["sweep"],
@@ -158,6 +165,7 @@ impl Scene {
             !self.observe.like_neighbours || self.species.species.is_some(),
             "needs [[species]] (with one species every neighbour is like)",
         )?;
+        self.chain_plans()?;
         self.observe.validate(self.geometry.shortest_edge()?)?;
         self.output.validate()?;
         if let Some(w) = &self.sweep {

@@ -233,3 +233,49 @@ fn the_shipped_mixture_demixes() {
         assert!(f > 0.6, "{name}: {f}");
     }
 }
+
+/// A diblock melt with solvent: 20 chains of 6 beads ("A A A B B B", harmonic K = 2, an angle
+/// type) among 300 particles, 150 of each species. The chains take ids 0..120 with their
+/// beads' species, the solvent the species left over (90 A, then 90 B); the topology holds
+/// every neighbour bond and inner angle; bonded beads start exactly one step apart (sqrt(3/4),
+/// the spring's rms length at k_B T = 1) under minimum image.
+#[test]
+fn a_scene_s_chains_build_a_bonded_system() {
+    let text = "n = 300\n\
+                [[species]]\nname = \"A\"\nfraction = 0.5\n\
+                [[species]]\nname = \"B\"\nfraction = 0.5\n\
+                [pairs]\nA-A = { a = 25.0 }\nB-B = { a = 25.0 }\nA-B = { a = 30.0 }\n\
+                [[bond_types]]\nname = \"spring\"\nstyle = \"harmonic\"\nk = 2.0\n\
+                [[angle_types]]\nname = \"bend\"\nstyle = \"cosine\"\nk = 1.5\n\
+                [[molecules]]\nlength = 6\ncount = 20\nbeads = \"A A A B B B\"\n\
+                bond = \"spring\"\nangle = \"bend\"\n";
+    let scene = Scene::from_toml(text, "t").unwrap();
+    scene.validate().unwrap();
+    let sys = scene.system(0.05, 3).unwrap();
+    let kinds_by_id = |id: u32| sys.kinds()[sys.ids().iter().position(|&i| i == id).unwrap()];
+    let kinds: Vec<u16> = (0..300).map(kinds_by_id).collect();
+    let chain = [0, 0, 0, 1, 1, 1];
+    let want: Vec<u16> = (0..20)
+        .flat_map(|_| chain)
+        .chain([0; 90])
+        .chain([1; 90])
+        .collect();
+    assert_eq!(kinds, want);
+    let topology = sys.topology().unwrap();
+    assert_eq!((topology.bonds().len(), topology.angles().len()), (100, 80));
+    let (b, a) = (topology.bonds()[5], topology.angles()[4]);
+    assert_eq!((b.i, b.j, a.i, a.j, a.k), (6, 7, 6, 7, 8));
+    let at = |id: u32| sys.positions()[sys.ids().iter().position(|&i| i == id).unwrap()];
+    for bond in topology.bonds() {
+        let r = sys.boundary().min_image(at(bond.j) - at(bond.i)).norm();
+        assert!((r - 0.75f64.sqrt()).abs() < 1e-12, "{r}");
+    }
+    for (text, key) in [
+        (format!("{text}[walls]\n"), "walls"),
+        (format!("shear_rate = 0.1\n{text}"), "shear_rate"),
+        (format!("init = \"x.gsd\"\n{text}"), "init"),
+    ] {
+        let e = error_of(&text);
+        assert!(e.contains(&format!("invalid {key} ")), "{e}");
+    }
+}
