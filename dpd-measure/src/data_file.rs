@@ -3,6 +3,7 @@
 //! dpd` coefficients `A gamma [cutoff]` (F = A (1 - r / r_c), sigma^2 = 2 gamma k_B T), the
 //! box `[lo, hi)` per axis, types and ids from 1. The file format is `dpd_trajectory`'s.
 
+use crate::data_bonds::write_topology;
 use dpd_core::{ParamError, System};
 use dpd_trajectory::lammps_data::{Atom, AtomStyle, Coeffs, DataFile};
 use dpd_trajectory::Frame;
@@ -12,13 +13,6 @@ use std::collections::BTreeMap;
 /// the box's lower corner wrapped into `[0, L)`, type ids from 0 named by the `Atom Type
 /// Labels` (else "1", "2", ...), masses from `Masses` (none when it gives none).
 pub fn frame_of(data: &DataFile) -> Result<Frame, String> {
-    if !data.bonds.is_empty() || !data.angles.is_empty() {
-        return Err(format!(
-            "has {} bonds and {} angles; bonded forces are not simulated yet",
-            data.bonds.len(),
-            data.angles.len()
-        ));
-    }
     let mut atoms: Vec<&Atom> = data.atoms.iter().collect();
     atoms.sort_by_key(|a| a.id);
     let lengths = data.bounds.map(|[lo, hi]| hi - lo);
@@ -147,7 +141,8 @@ pub fn same_repulsions(
 /// The state of `sys` as a data file of atom style atomic, particles by id (atom id = id + 1),
 /// positions in `[0, L)`, with the type names `names` as `Atom Type Labels`, `Masses` (each
 /// type's mass; the error names a type whose particles differ in mass), `Velocities` and the
-/// `pair_style dpd` coefficients of every pair of types.
+/// `pair_style dpd` coefficients of every pair of types; with a topology, its bonds and angles
+/// (see [`write_topology`]).
 pub fn data_of(sys: &System, names: &[String], title: &str) -> Result<DataFile, String> {
     let params = sys.params();
     let types = params.types();
@@ -188,7 +183,7 @@ pub fn data_of(sys: &System, names: &[String], title: &str) -> Result<DataFile, 
         }
     }
     let lengths: [f64; 3] = sys.boundary().lengths().into();
-    Ok(DataFile {
+    let mut data = DataFile {
         title: title.to_string(),
         bounds: lengths.map(|l| [0.0, l]),
         atom_types: types as u32,
@@ -206,7 +201,11 @@ pub fn data_of(sys: &System, names: &[String], title: &str) -> Result<DataFile, 
         },
         bond_coeffs: Coeffs::default(),
         angle_coeffs: Coeffs::default(),
-    })
+    };
+    if let Some(topology) = sys.topology() {
+        write_topology(topology, &mut data)?;
+    }
+    Ok(data)
 }
 
 #[cfg(test)]

@@ -16,6 +16,7 @@ pub mod batch;
 pub mod chains;
 pub mod cost;
 pub mod critical;
+pub mod data_bonds;
 pub mod data_file;
 pub mod images;
 pub mod kl;

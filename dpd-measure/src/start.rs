@@ -2,8 +2,9 @@
 //! file (`init = "FILE.data"`), read by the `dpd-trajectory` crate (`--init`),
 //! and where their trajectories' counters start.
 
+use crate::data_bonds::topology_of;
 use crate::data_file::{frame_of, repulsions};
-use dpd_core::{ParamError, Vec3};
+use dpd_core::{ParamError, Topology, Vec3};
 use dpd_trajectory::gsd::GsdReader;
 use dpd_trajectory::lammps_data::DataFile;
 use dpd_trajectory::Frame;
@@ -18,10 +19,11 @@ pub struct InitSpec {
 }
 
 /// What a run starts from: a frame, and the repulsions a_ij of a data file's pair
-/// coefficients.
+/// coefficients and its bonds and angles.
 pub struct Start {
     pub frame: Frame,
     pub repulsions: Option<Vec<Vec<f64>>>,
+    pub topology: Option<Topology>,
 }
 
 impl InitSpec {
@@ -85,7 +87,13 @@ impl InitSpec {
                         )));
                     }
                 }
-                ("the file".to_string(), Start { frame, repulsions })
+                let topology = topology_of(&data)?;
+                let start = Start {
+                    frame,
+                    repulsions,
+                    topology,
+                };
+                ("the file".to_string(), start)
             }
             _ => {
                 let (frame, k) = self.gsd_frame()?;
@@ -96,8 +104,19 @@ impl InitSpec {
                         format!("must be the scene's species, {names:?}, in their order"),
                     ));
                 }
-                let repulsions = None;
-                (format!("frame {k}"), Start { frame, repulsions })
+                if frame.bonds.is_some() {
+                    return Err(bad(format!(
+                        "frame {k} has bonds, whose coefficients a GSD file does not hold: \
+                         start a bonded system from a LAMMPS data file (write_data)"
+                    )));
+                }
+                let (repulsions, topology) = (None, None);
+                let start = Start {
+                    frame,
+                    repulsions,
+                    topology,
+                };
+                (format!("frame {k}"), start)
             }
         };
         let f = &start.frame;

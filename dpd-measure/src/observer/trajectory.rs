@@ -8,8 +8,8 @@ use crate::result::RunResult;
 use crate::scene::{Field, TrajectorySpec};
 use crate::start::Origin;
 use dpd_core::observe::thermo;
-use dpd_core::{ParamError, System, Vec3};
-use dpd_trajectory::{Frame, Writer};
+use dpd_core::{ParamError, System, Topology, Vec3};
+use dpd_trajectory::{Bonds, Frame, Writer};
 use std::path::PathBuf;
 
 /// The observables a frame logs, in the order of [`frame`]'s values.
@@ -134,7 +134,7 @@ impl Observer for Recorder {
 
 /// The system's state as a frame with type names `types`, particles in the order of their
 /// ids (the order in which the system was built; the storage order changes as the system
-/// sorts itself), at its own step and time (step x dt).
+/// sorts itself), at its own step and time (step x dt), with the system's bonds.
 fn frame(sys: &mut System, fields: &[Field], types: &[String]) -> Frame {
     let ids: Vec<usize> = sys.ids().iter().map(|&i| i as usize).collect();
     let in_id_order = |values: &[Vec3], scale: &dyn Fn(usize) -> f64| {
@@ -185,7 +185,20 @@ fn frame(sys: &mut System, fields: &[Field], types: &[String]) -> Frame {
         types: types.to_vec(),
         masses: fields.contains(&Field::Mass).then_some(mass),
         log,
-        bonds: None,
+        bonds: sys.topology().filter(|t| !t.bonds().is_empty()).map(bonds),
+    }
+}
+
+/// The bonds of `topology` as a frame holds them (GSD `bonds/...`, which OVITO draws), by
+/// particle id, the bond types named by number from 1 as in a LAMMPS data file.
+fn bonds(topology: &Topology) -> Bonds {
+    let b = topology.bonds();
+    Bonds {
+        types: (1..=topology.bond_types().len())
+            .map(|t| t.to_string())
+            .collect(),
+        typeid: b.iter().map(|b| u32::from(b.kind)).collect(),
+        group: b.iter().map(|b| [b.i, b.j]).collect(),
     }
 }
 
@@ -224,5 +237,28 @@ mod tests {
         sys.advance(aboba.as_ref(), 40).unwrap();
         let t_c = logged(&mut sys);
         assert!(t_c > 0.5 && t_c < 2.0, "{t_c}");
+    }
+
+    /// The frames of a bonded system carry its bonds by particle id (GSD `bonds/...`, read
+    /// back here), so that OVITO draws the chains.
+    #[test]
+    fn frames_carry_the_bonds() {
+        let text = "n = 60\n[[bond_types]]\nname = \"b\"\nstyle = \"harmonic\"\nk = 2.0\n\
+                    [[molecules]]\nlength = 4\ncount = 5\nbond = \"b\"\n";
+        let scene = Scene::from_toml(text, "t").unwrap();
+        let mut sys = scene.system(0.05, 3).unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let spec = TrajectorySpec {
+            file: dir.path().join("melt.gsd"),
+            every: 1.0,
+            fields: None,
+        };
+        let types = scene.type_names(1);
+        Recorder::start(&spec, 0.05, (3, 1), types, Origin::default(), &mut sys).unwrap();
+        let read = dpd_trajectory::gsd::GsdReader::open(&spec.file).unwrap();
+        let bonds = read.frame(0).unwrap().bonds.unwrap();
+        assert_eq!(bonds.types, ["1"]);
+        assert_eq!(bonds.typeid, [0; 15]);
+        assert_eq!(&bonds.group[..4], [[0, 1], [1, 2], [2, 3], [4, 5]]);
     }
 }

@@ -22,7 +22,7 @@ impl Scene {
         let n = geometry.particles();
         let type_masses = self.type_masses();
         let names = self.species.names();
-        let (state, params) = match &geometry.init {
+        let (state, params, topology) = match &geometry.init {
             Some(init) => {
                 let lengths = bx.lengths().into();
                 let start = InitSpec::parse(init)?.read(n, lengths, &names, physics.gamma)?;
@@ -38,7 +38,8 @@ impl Scene {
                 // lacks: their particles take the scene's mass where the file has none.
                 let mut masses = type_masses;
                 masses.resize(params.types(), physics.mass);
-                (initial_state(&start.frame, &masses)?, params)
+                let state = initial_state(&start.frame, &masses)?;
+                (state, params, start.topology)
             }
             None => {
                 let plans = self.chain_plans()?;
@@ -51,7 +52,7 @@ impl Scene {
                 let mut q = chains::random_walks(&plans, &bx, seed);
                 q.extend(uniform_positions(&bx, n - q.len(), seed));
                 let p = maxwell_momenta(&masses, physics.kbt, seed);
-                ((q, p, masses, kinds), self.params()?)
+                ((q, p, masses, kinds), self.params()?, self.topology()?)
             }
         };
         let (q, mut p, masses, kinds) = state;
@@ -66,7 +67,7 @@ impl Scene {
             let frozen = freeze_outside(&walls, &q, &mut p);
             builder = builder.walls(walls).frozen(frozen);
         }
-        if let Some(topology) = self.topology()? {
+        if let Some(topology) = topology {
             builder = builder.topology(topology);
         }
         if let Some(k) = physics.shear_rate {

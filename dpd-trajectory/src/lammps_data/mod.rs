@@ -8,7 +8,7 @@
 //! Types and ids count from 1 as in the file. Errors name the line and the section.
 
 use crate::TrajectoryError;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -367,7 +367,7 @@ impl DataFile {
                         at(first, &format!("{n} columns are no atom style read here"))
                     })?;
                 }
-                let mut ids = std::collections::BTreeSet::new();
+                let mut ids = BTreeSet::new();
                 for l in body {
                     let atom = self.atom(l)?;
                     if !ids.insert(atom.id) {
@@ -401,16 +401,20 @@ impl DataFile {
                     self.atoms[k].velocity = Some([v[0], v[1], v[2]]);
                 }
             }
-            "Bonds" => {
-                for l in body {
-                    let (id, kind, atoms) = self.topology(l, self.bond_types, "bond")?;
-                    self.bonds.push(Topology { id, kind, atoms });
+            "Bonds" | "Angles" => {
+                if self.atoms.is_empty() {
+                    return Err(format!("section `{name}`: comes before `Atoms`"));
                 }
-            }
-            "Angles" => {
+                let ids: BTreeSet<u64> = self.atoms.iter().map(|a| a.id).collect();
                 for l in body {
-                    let (id, kind, atoms) = self.topology(l, self.angle_types, "angle")?;
-                    self.angles.push(Topology { id, kind, atoms });
+                    if name == "Bonds" {
+                        let (id, kind, atoms) = self.topology(l, &ids, self.bond_types, "bond")?;
+                        self.bonds.push(Topology { id, kind, atoms });
+                    } else {
+                        let (id, kind, atoms) =
+                            self.topology(l, &ids, self.angle_types, "angle")?;
+                        self.angles.push(Topology { id, kind, atoms });
+                    }
                 }
             }
             "Pair Coeffs" | "PairIJ Coeffs" => {
@@ -492,9 +496,12 @@ impl DataFile {
         })
     }
 
+    /// A bond or angle line: its id, type and `K` distinct atoms of `ids` (the error names the
+    /// line).
     fn topology<const K: usize>(
         &self,
         l: &Line,
+        ids: &BTreeSet<u64>,
         types: u32,
         what: &str,
     ) -> Result<(u64, u32, [u64; K]), String> {
@@ -505,39 +512,30 @@ impl DataFile {
                 &format!("a {what} line is `id type` and {K} atom ids"),
             ));
         }
+        let id = integer(l, 0, "id")?;
         let mut atoms = [0; K];
-        for (k, a) in atoms.iter_mut().enumerate() {
-            *a = integer(l, k + 2, "atom id")?;
+        for k in 0..K {
+            let a = integer(l, k + 2, "atom id")?;
+            if !ids.contains(&a) {
+                let why = format!("{what} {id} names atom {a}, which is not in Atoms");
+                return Err(at(l, &why));
+            }
+            if atoms[..k].contains(&a) {
+                return Err(at(l, &format!("{what} {id} names atom {a} twice")));
+            }
+            atoms[k] = a;
         }
-        Ok((integer(l, 0, "id")?, type_in(l, 1, types, what)?, atoms))
+        Ok((id, type_in(l, 1, types, what)?, atoms))
     }
 
-    /// Checks across sections: bonds and angles between distinct existing atoms, every atom
-    /// with a velocity once any has one.
+    /// Checks across sections: the atoms the header counts, every atom with a velocity once
+    /// any has one.
     fn check(&self, counts: &Header) -> Result<(), String> {
-        let ids: std::collections::BTreeSet<u64> = self.atoms.iter().map(|a| a.id).collect();
         if counts.atoms > 0 && self.atoms.is_empty() {
             return Err(format!(
                 "the header has {} atoms and no `Atoms` section",
                 counts.atoms
             ));
-        }
-        let bonded = self.bonds.iter().map(|b| (b.id, &b.atoms[..], "Bonds"));
-        let angled = self.angles.iter().map(|a| (a.id, &a.atoms[..], "Angles"));
-        for (id, atoms, section) in bonded.chain(angled) {
-            if let Some(a) = atoms.iter().find(|a| !ids.contains(a)) {
-                return Err(format!(
-                    "section `{section}`: {id} names atom {a}, which is not in Atoms"
-                ));
-            }
-            let mut sorted = atoms.to_vec();
-            sorted.sort_unstable();
-            sorted.dedup();
-            if sorted.len() < atoms.len() {
-                return Err(format!(
-                    "section `{section}`: {id} names one atom twice: {atoms:?}"
-                ));
-            }
         }
         if self.atoms.iter().any(|a| a.velocity.is_some())
             && self.atoms.iter().any(|a| a.velocity.is_none())

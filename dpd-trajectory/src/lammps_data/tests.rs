@@ -172,12 +172,12 @@ fn malformed_files_name_the_section_and_line() {
         (
             "2 1 2 3\n",
             "2 1 3 3\n",
-            "section `Bonds`: 2 names one atom twice",
+            "line 53: bond 2 names atom 3 twice: `2 1 3 3`",
         ),
         (
             "2 1 2 3\n",
             "2 1 2 4\n",
-            "section `Bonds`: 2 names atom 4, which is not in Atoms",
+            "line 53: bond 2 names atom 4, which is not in Atoms: `2 1 2 4`",
         ),
         (
             "Angles\n",
@@ -203,6 +203,11 @@ fn malformed_files_name_the_section_and_line() {
             "3 1 2 0.5",
             "2 1 2 0.5",
             "section `Atoms`: atom id 2 appears twice",
+        ),
+        (
+            "1 1 1 2\n2 1 2 3\n",
+            "1 1 1 2 3\n2 1 2 3\n",
+            "line 52: a bond line is `id type` and 2 atom ids",
         ),
     ] {
         assert!(FULL.contains(from), "{from}");
