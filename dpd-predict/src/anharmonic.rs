@@ -181,16 +181,6 @@ mod tests {
         dpd_ir::compile(s).unwrap()
     }
 
-    fn model() -> PairModel {
-        PairModel {
-            a: 25.0,
-            rc: 1.0,
-            gamma: 4.5,
-            weight_exponent: 2.0,
-            kbt: 1.0,
-        }
-    }
-
     /// One pair at distance r: |F|^2 = 2 (a (1 - r))^2, lap U = 2 (a - 2 a (1 - r) / r), and
     /// the network's trace 2 a (unit masses); a pair beyond the cut-off counts nothing.
     #[test]
@@ -200,7 +190,7 @@ mod tests {
             &[[0.5; 3], [0.5 + r, 0.5, 0.5]],
             &[1.0; 2],
             [3.0; 3],
-            model(),
+            PairModel::standard(),
         );
         assert_relative_eq!(o[0], 2.0 * (a * (1.0 - r)).powi(2), max_relative = 1e-12);
         assert_relative_eq!(
@@ -209,7 +199,12 @@ mod tests {
             max_relative = 1e-12
         );
         assert_relative_eq!(o[2], 2.0 * a, max_relative = 1e-12);
-        let far = observables(&[[0.5; 3], [1.6, 0.5, 0.5]], &[1.0; 2], [3.0; 3], model());
+        let far = observables(
+            &[[0.5; 3], [1.6, 0.5, 0.5]],
+            &[1.0; 2],
+            [3.0; 3],
+            PairModel::standard(),
+        );
         assert_eq!(far, [0.0; 3]);
     }
 
@@ -227,7 +222,7 @@ mod tests {
             max_relative = 1e-12
         );
         let few = vec![vec![[0.5; 3], [0.9, 0.5, 0.5]]; 15];
-        assert!(response(&few, &[1.0; 2], [3.0; 3], model()).is_err());
+        assert!(response(&few, &[1.0; 2], [3.0; 3], PairModel::standard()).is_err());
     }
 
     /// ABOBA and BAOAB: the phase-space slopes `lambda g'` are `x / (1 - x) / 2` and

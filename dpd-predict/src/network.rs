@@ -34,6 +34,20 @@ pub struct PairModel {
 /// centre of mass, particles without neighbours) and are left out.
 const ZERO_MODE: f64 = 1e-9;
 
+#[cfg(test)]
+impl PairModel {
+    /// The standard box's pair forces (algorithms.md section 8), for tests.
+    pub(crate) fn standard() -> Self {
+        PairModel {
+            a: 25.0,
+            rc: 1.0,
+            gamma: 4.5,
+            weight_exponent: 2.0,
+            kbt: 1.0,
+        }
+    }
+}
+
 /// Why a configuration has no network.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum NetworkError {
@@ -218,20 +232,9 @@ mod tests {
     /// Two particles at distance r: one mode, the relative coordinate, with stiffness
     /// `a / r_c` over the reduced mass `m / 2` and friction `gamma w_D(r)` over it; the
     /// centre of mass and the two rotations are zero modes.
-    /// The standard box's pair forces (algorithms.md section 8).
-    fn standard() -> PairModel {
-        PairModel {
-            a: 25.0,
-            rc: 1.0,
-            gamma: 4.5,
-            weight_exponent: 2.0,
-            kbt: 1.0,
-        }
-    }
-
     #[test]
     fn a_pair_has_one_mode_of_its_reduced_mass() {
-        let model = standard();
+        let model = PairModel::standard();
         let (m, r) = (2.0, 0.6);
         let s = spectrum(
             &[[1.0, 1.0, 1.0], [1.0 + r, 1.0, 1.0]],
@@ -251,7 +254,7 @@ mod tests {
 
     #[test]
     fn bad_configurations_are_refused() {
-        let model = standard();
+        let model = PairModel::standard();
         let q = [[0.0; 3], [0.5, 0.0, 0.0]];
         assert!(spectrum(&q, &[1.0], [5.0; 3], model).is_err());
         assert!(spectrum(&q, &[1.0, 0.0], [5.0; 3], model).is_err());
