@@ -36,10 +36,25 @@ impl PairTable {
             // count: both come from the positions.
             (Some(le), _) => {
                 let fill = self.start_fill(list, q, bx, shear, (params, kind), true);
-                let image = |i: u32, j: u32| le.min_image(bx, q[i as usize] - q[j as usize]);
-                let from_positions = |i, j, _| Some(image(i, j).0);
-                fill.into(self, from_positions, Some(from_positions), |_: &[Pair]| {});
-                let shifts = self.pairs.iter().map(|p| image(p.i, p.j).1);
+                // `image` and the scan's closure are inlined by force: left to the optimiser,
+                // they became a call per hit that cost 4.5 % of a sheared step.
+                #[inline(always)]
+                fn image(
+                    le: &LeesEdwards,
+                    bx: &PeriodicBox,
+                    q: &[Vec3],
+                    i: u32,
+                    j: u32,
+                ) -> (Vec3, f64) {
+                    le.min_image(bx, q[i as usize] - q[j as usize])
+                }
+                let from_positions = |i, j, _| Some(image(le, bx, q, i, j).0);
+                let scanned = Some(
+                    #[inline(always)]
+                    |i, j, _| Some(image(le, bx, q, i, j).0),
+                );
+                fill.into(self, from_positions, scanned, |_: &[Pair]| {});
+                let shifts = self.pairs.iter().map(|p| image(le, bx, q, p.i, p.j).1);
                 self.shifts.extend(shifts);
             }
             (None, Some(w)) => {
@@ -209,32 +224,27 @@ impl Fill<'_> {
                 geometry(i, j, d, r, 1.0 / r)
             })
         };
-        if list.skin() == 0.0 {
-            let grid = list.grid();
-            table.groups = match &scanned {
-                None => grid.sweep(
-                    q,
-                    bx,
-                    shear,
-                    rc,
-                    &mut table.pairs,
-                    #[inline(always)]
-                    |h, out| {
-                        out.reserve(h.len());
-                        for k in 0..h.len() {
-                            if interacts(h.r2[k]) {
-                                let (j, d) = h.get(k);
-                                out.push(geometry(h.a(), j, d, h.r[k], h.inv_r[k]));
-                            }
+        // Without skin and with the scan's hits as they are, the pairs reuse the distances the
+        // scan computed; every other fill goes pair by pair.
+        if list.skin() == 0.0 && scanned.is_none() {
+            table.groups = list.grid().sweep(
+                q,
+                bx,
+                shear,
+                rc,
+                &mut table.pairs,
+                #[inline(always)]
+                |h, out| {
+                    out.reserve(h.len());
+                    for k in 0..h.len() {
+                        if interacts(h.r2[k]) {
+                            let (j, d) = h.get(k);
+                            out.push(geometry(h.a(), j, d, h.r[k], h.inv_r[k]));
                         }
-                    },
-                    after,
-                ),
-                Some(scanned) => {
-                    let emit = |h: &Hits, out: &mut Vec<Pair>| emit(scanned, &pair, h, out);
-                    grid.sweep(q, bx, shear, rc, &mut table.pairs, emit, after)
-                }
-            };
+                    }
+                },
+                after,
+            );
             return;
         }
         self.each(table, image, scanned, pair, after);
