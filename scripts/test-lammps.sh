@@ -36,7 +36,11 @@ cargo test --quiet --workspace --no-run
 dpd=$PWD/target/debug/dpd
 export DPD_LAMMPS_CARGO_PROFILE=test
 rm -rf "$cache/plugin"
-"$dpd" export lammps aboba baoab obabo "S(x1) S(x0) S(x1) O" vv sas dpd-s1 --out "$cache/plugin" >/dev/null
+# The force-group schemes of check.py's melt (MTS_ABOBA, RESPA_ONE, SAS_BONDS there).
+"$dpd" export lammps aboba baoab obabo "S(x1) S(x0) S(x1) O" vv sas dpd-s1 \
+    "(B[bond](1/8) A(1/4) B[bond](1/8))^2 B[pair](1/2) O B[pair](1/2) (B[bond](1/8) A(1/4) B[bond](1/8))^2" \
+    "O(1/2) B[pair](1/2) (B[bond](1/2) A B[bond](1/2))^1 B[pair](1/2) O(1/2)" \
+    "T(1/2) B[bond](1/2) A B[bond](1/2) T(1/2)" --out "$cache/plugin" >/dev/null
 # The tree must build with CMake, a C++17 compiler and LAMMPS alone: a copy in a fresh
 # directory that names no file of the checkout, built with PATH holding neither cargo nor rustc
 # and HOME elsewhere, as on a cluster. Its plugin is the one every check below loads.
@@ -58,6 +62,6 @@ plugin=$cache/dpdsplitplugin.so
 cp "$fresh/build/dpdsplitplugin.so" "$plugin"
 echo "built $plugin in a fresh directory without cargo"
 [ $# -eq 0 ] && set -- --only=bad --only=repeat --only=equilibrium --ranks=2 --steps=400 --no-native \
-    --only=shear --shear-time=100 --only=soft --only=trotter --only=pairs --only=restart --only=temp --only=tally --only=data
+    --only=shear --shear-time=100 --only=soft --only=trotter --only=pairs --only=restart --only=temp --only=tally --only=data --only=melt
 "$venv/bin/python" scripts/lammps/check.py --lmp "$venv/bin/lmp" --mpirun "$venv/bin/mpirun" \
     --plugin "$plugin" --dpd "$dpd" --work "$cache/runs" "$@"

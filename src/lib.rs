@@ -15,7 +15,8 @@
 pub use dpd_core::{
     boundary, checkpoint, error, flow, init, metropolis, neighbour, observe, pairs, params,
     reference, rng, scheme, system, AdvanceError, BlowUp, CheckpointError, DynScheme, Flow,
-    ParamError, Params, PeriodicBox, Scheme, Stage, SweepOrder, System, SystemBuilder, Vec3,
+    ForceGroup, ParamError, Params, PeriodicBox, Scheme, Stage, SweepOrder, System, SystemBuilder,
+    Vec3,
 };
 pub use dpd_ir::{analysis, design, lang, program, Analysis, Program};
 #[doc = include_str!("dpd_scheme.md")]

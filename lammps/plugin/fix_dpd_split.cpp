@@ -5,7 +5,14 @@
    forces of F are computed by the dpd-lammps kernels (Rust, dpd-core's pair updates and
    Philox pair noise). A is the drift, B the kick by the forces LAMMPS computes. T includes the
    pair's conservative force in its exact update, so it needs that force per pair: it runs
-   when pair_style dpd/soft is the only force style, whose coefficients the kernels read.
+   when pair_style dpd/soft is the only pair style, whose coefficients the kernels read.
+
+   Force groups: a stage B[pair] (F[pair]) applies the pair styles' forces only, B[bond] the
+   bond, angle, dihedral and improper styles' only, as r-RESPA's levels split them. LAMMPS's
+   own evaluation computes all of them into atom->f; the fix evaluates the bonded styles
+   alone where B[bond] needs them (cheap next to the pairs) and takes the pair forces as all
+   forces less the bonded ones. What adds forces outside those styles (kspace, fixes adding
+   forces after the evaluation) belongs to no group and is refused.
 
    Sequential sweeps across ranks: each rank's subdomain is cut into 2 x 2 x 2 octants
    (colours); a sweep visits colour by colour, on every rank at once, the pairs whose owned
@@ -69,6 +76,27 @@ std::string compiled_names()
 bool needs_forces(int flow)
 {
   return flow == DpdSplit::FLOW_B || flow == DpdSplit::FLOW_F;
+}
+
+/// Whether a stage needs the pair forces at the current positions (B and F, all forces or the
+/// pair group): LAMMPS's own evaluation, which computes every force, is placed at one of these.
+bool needs_pair_forces(const Stage &stage)
+{
+  return needs_forces(stage.flow) && stage.group != DpdSplit::GROUP_BOND;
+}
+
+/// Whether some stage of `scheme` applies the force group `group` alone.
+bool names_group(const DpdSplit::Scheme &scheme, int group)
+{
+  for (int k = 0; k < scheme.nstages; ++k)
+    if (scheme.stages[k].group == group) return true;
+  return false;
+}
+
+/// Whether the input defines a bonded force style (bond, angle, dihedral or improper).
+bool has_bonded_styles(Force *force)
+{
+  return force->bond || force->angle || force->dihedral || force->improper;
 }
 
 /// Whether a stage needs the current positions of ghost atoms (pair geometry), but no forces.
@@ -156,7 +184,7 @@ FixDPDSplit::FixDPDSplit(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), scheme(nullptr), kt(0.0), exponent(2.0), max_rc(0.0), seed(0),
     exclusive(true), tally_end(true), kernels(nullptr), list(nullptr), soft(nullptr), split(0),
     last_drift(-1), forces_stale(false), ghosts_stale(false), step_eflag(0), step_vflag(0),
-    epoch(0), full_epoch(-1), colour_build(-1), comm_mode(COMM_V), full_virial{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}
+    epoch(0), full_epoch(-1), moves(0), colour_build(-1), comm_mode(COMM_V), full_virial{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}
 {
   const char *usage = "fix ID group dpd/split SCHEME kT gamma r_c seed [exponent s] "
                       "[coeff I J gamma r_c] ... [exclusive yes|no] [tally end|evaluation]";
@@ -258,7 +286,8 @@ FixDPDSplit::FixDPDSplit(LAMMPS *lmp, int narg, char **arg) :
   comm_forward = 3;
   comm_reverse = 3;
 
-  // Where LAMMPS's force evaluation falls: at the first stage needing forces after a drift.
+  // Where LAMMPS's force evaluation falls: at the first stage needing forces after a drift
+  // (the pair forces: a B[bond] stage gets its bonded forces from an evaluation of its own).
   // The step is cyclic (a step ending with a drift leaves the next one's first stages with
   // moved positions), so the analysis runs twice, the second time starting from the staleness
   // the step ends with.
@@ -269,20 +298,20 @@ FixDPDSplit::FixDPDSplit(LAMMPS *lmp, int narg, char **arg) :
     bool s = stale_at_start;
     split = scheme->nstages;
     for (int k = 0; k < scheme->nstages; ++k) {
-      int flow = scheme->stages[k].flow;
-      if (flow == DpdSplit::FLOW_A)
+      const Stage &stage = scheme->stages[k];
+      if (stage.flow == DpdSplit::FLOW_A)
         s = true;
-      else if (s && needs_forces(flow)) {
+      else if (s && needs_pair_forces(stage)) {
         split = k;
         break;
       }
     }
     s = false;
     for (int k = split; k < scheme->nstages; ++k) {
-      int flow = scheme->stages[k].flow;
-      if (flow == DpdSplit::FLOW_A)
+      const Stage &stage = scheme->stages[k];
+      if (stage.flow == DpdSplit::FLOW_A)
         s = true;
-      else if (s && needs_forces(flow))
+      else if (s && needs_pair_forces(stage))
         s = false;
     }
     stale_at_start = s;
@@ -315,6 +344,7 @@ void FixDPDSplit::init()
   check_cutoffs_and_tags();
   check_subdomain_size();
   check_trotter_input();
+  check_groups();
   neighbor->add_request(this);
 }
 
@@ -388,15 +418,21 @@ void FixDPDSplit::check_trotter_input()
   if (!soft)
     error->all(FLERR, "{}the only pair style must be this plugin's dpd/soft (got '{}')", why,
                force->pair_style);
+  // Bonded styles are applied by the scheme's B[bond] stages, if it has any.
+  bool bonded_kicks = names_group(*scheme, DpdSplit::GROUP_BOND);
   auto refuse = [&](const char *kind, const void *defined, const char *style) {
     if (defined)
-      error->all(FLERR, "{}pair_style dpd/soft must be the only force style; the input also "
-                 "defines {}_style {}, whose force a T update would leave out", why, kind, style);
+      error->all(FLERR, "{}pair_style dpd/soft must be the only force style besides bonded styles "
+                 "applied by B[bond] stages; the input also defines {}_style {}, whose force a "
+                 "T update would leave out{}", why, kind, style,
+                 bonded_kicks ? "" : " (a scheme whose other kicks are B[bond] applies bonded styles)");
   };
-  refuse("bond", force->bond, force->bond_style);
-  refuse("angle", force->angle, force->angle_style);
-  refuse("dihedral", force->dihedral, force->dihedral_style);
-  refuse("improper", force->improper, force->improper_style);
+  if (!bonded_kicks) {
+    refuse("bond", force->bond, force->bond_style);
+    refuse("angle", force->angle, force->angle_style);
+    refuse("dihedral", force->dihedral, force->dihedral_style);
+    refuse("improper", force->improper, force->improper_style);
+  }
   refuse("kspace", force->kspace, force->kspace_style);
   if (atom->molecular)
     for (int k = 1; k < 4; ++k)
@@ -411,6 +447,30 @@ void FixDPDSplit::check_trotter_input()
         error->all(FLERR, "{}pair_coeff {} {} has cutoff {} beyond the fix's r_c = {}: the sweep "
                    "sees only the pairs within r_c", why, i, j, soft->cutoffs()[i * n + j],
                    rc[i * n + j]);
+}
+
+/// For a scheme whose stages name force groups: refuse what adds forces outside the pair and
+/// bonded styles (kspace, fixes adding forces after the evaluation), which no group holds and
+/// which the split of all forces into pair and bonded ones would count as pair forces, and
+/// B[bond] stages without bonded styles.
+void FixDPDSplit::check_groups()
+{
+  bool bonded = names_group(*scheme, DpdSplit::GROUP_BOND);
+  if (!bonded && !names_group(*scheme, DpdSplit::GROUP_PAIR)) return;
+  std::string why = std::string("fix dpd/split: scheme '") + scheme->name + "' = " +
+      scheme->program + " applies force groups apart (B[pair]: the pair styles, B[bond]: the "
+      "bond, angle, dihedral and improper styles), so ";
+  if (force->kspace)
+    error->all(FLERR, "{}kspace_style {} cannot be run: its forces belong to neither group; use a "
+               "scheme without force groups", why, force->kspace_style);
+  for (Fix *other : modify->get_fix_list())
+    if (other != this && (modify->get_fix_mask(other) & POST_FORCE))
+      error->all(FLERR, "{}fix {} (style {}) cannot be run: it adds forces after the force "
+                 "evaluation, which belong to neither group; use a scheme without force groups",
+                 why, other->id, other->style);
+  if (bonded && !(atom->molecular && has_bonded_styles(force)))
+    error->all(FLERR, "{}its B[bond] stages need bonded forces, but the input defines no bond, "
+               "angle, dihedral or improper style", why);
 }
 
 /// Refuse subdomains thinner than 4 r_c + 2 skin (see the header of this file) along a
@@ -454,6 +514,7 @@ void FixDPDSplit::setup(int)
                scheme->program, modify->n_post_force_any);
   forces_stale = ghosts_stale = false;
   ++epoch;
+  ++moves;
   for (int k = 1; k <= scheme->nstages; ++k)
     if (kinetic_wanted[k]) record(k);
 }
@@ -518,20 +579,17 @@ void FixDPDSplit::run_stages(int from, int to)
 {
   for (int k = from; k < to; ++k) {
     const Stage &stage = scheme->stages[k];
-    if (forces_stale && needs_forces(stage.flow)) {
-      // After the step's last drift the positions are final: tally energy and virial there.
-      bool final_positions = k > last_drift;
-      refresh(final_positions ? step_eflag : 0, final_positions ? step_vflag : 0);
-    } else if (ghosts_stale && needs_ghosts(stage.flow)) {
-      refresh_ghosts();
-    }
+    if (ghosts_stale && needs_ghosts(stage.flow)) refresh_ghosts();
+    // After the step's last drift the positions are final: an evaluation of all forces there
+    // tallies energy and virial.
+    bool final_positions = k > last_drift;
     double h = stage.coeff * update->dt;
     switch (stage.flow) {
       case DpdSplit::FLOW_A:
         drift(h);
         break;
       case DpdSplit::FLOW_B:
-        kick(h, nullptr);
+        kick(h, forces_of(stage.group, final_positions), nullptr);
         break;
       case DpdSplit::FLOW_O:
       case DpdSplit::FLOW_OB:
@@ -539,7 +597,7 @@ void FixDPDSplit::run_stages(int from, int to)
         sweep(stage);
         break;
       case DpdSplit::FLOW_F:
-        full_force(stage);
+        full_force(stage, forces_of(stage.group, final_positions));
         break;
     }
     if (kinetic_wanted[k + 1]) record(k + 1);
@@ -553,15 +611,73 @@ void FixDPDSplit::drift(double h)
     for (int d = 0; d < 3; ++d) x[i][d] += h * v[i][d];
   forces_stale = ghosts_stale = true;
   ++epoch;
+  ++moves;
 }
 
-void FixDPDSplit::kick(double h, const double *extra)
+/// Kick the owned atoms by `forces` (3 nlocal doubles) plus `extra` (null for none).
+void FixDPDSplit::kick(double h, const double *forces, const double *extra)
 {
   prepare_atoms();
-  double **v = atom->v, **f = atom->f;
+  double **v = atom->v;
   for (int i = 0; i < atom->nlocal; ++i)
     for (int d = 0; d < 3; ++d)
-      v[i][d] += h * inv_mass[i] * (f[i][d] + (extra ? extra[3 * i + d] : 0.0));
+      v[i][d] += h * inv_mass[i] * (forces[3 * i + d] + (extra ? extra[3 * i + d] : 0.0));
+}
+
+/// The forces of `group` on the owned atoms at the current positions (3 nlocal doubles),
+/// evaluated if they are not at hand. All forces are LAMMPS's (atom->f), refreshed as Verlet
+/// computes them, tallying energy and virial on this step's flags at `final_positions`; the
+/// bonded group is an evaluation of the bonded styles alone; the pair group is all forces less
+/// the bonded ones.
+const double *FixDPDSplit::forces_of(int group, bool final_positions)
+{
+  if (group == DpdSplit::GROUP_BOND) {
+    if (!current(bonded_forces)) evaluate_bonded();
+    return bonded_forces.f.data();
+  }
+  if (group == DpdSplit::GROUP_ALL || !current(pair_forces)) {
+    if (forces_stale)
+      refresh(final_positions ? step_eflag : 0, final_positions ? step_vflag : 0);
+    if (group == DpdSplit::GROUP_ALL) return &atom->f[0][0];
+    if (!current(bonded_forces)) evaluate_bonded();
+    const double *all = &atom->f[0][0], *bonded = bonded_forces.f.data();
+    pair_forces.f.resize(3 * atom->nlocal);
+    for (int k = 0; k < 3 * atom->nlocal; ++k) pair_forces.f[k] = all[k] - bonded[k];
+    pair_forces.moves = moves;
+    pair_forces.build = neighbor->ncalls;
+  }
+  return pair_forces.f.data();
+}
+
+/// Whether `g` holds forces at the current positions and atom order.
+bool FixDPDSplit::current(const GroupForces &g) const
+{
+  return g.moves == moves && g.build == neighbor->ncalls;
+}
+
+/// The bonded group's forces at the current positions: the bond, angle, dihedral and improper
+/// styles evaluated alone (tallying nothing), reverse-communicated, into `bonded_forces`. All
+/// forces in atom->f, if at the current positions, are kept.
+void FixDPDSplit::evaluate_bonded()
+{
+  if (ghosts_stale) refresh_ghosts();
+  int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
+  double *f = &atom->f[0][0];
+  bool keep = !forces_stale;
+  if (keep) saved_forces.assign(f, f + 3 * nlocal);
+  memset(f, 0, sizeof(double) * 3 * nall);
+  if (force->bond) force->bond->compute(0, 0);
+  if (force->angle) force->angle->compute(0, 0);
+  if (force->dihedral) force->dihedral->compute(0, 0);
+  if (force->improper) force->improper->compute(0, 0);
+  if (force->newton) comm->reverse_comm();
+  bonded_forces.f.assign(f, f + 3 * nlocal);
+  bonded_forces.moves = moves;
+  bonded_forces.build = neighbor->ncalls;
+  if (keep)
+    std::copy(saved_forces.begin(), saved_forces.end(), f);
+  else
+    forces_stale = true;
 }
 
 /// Inverse masses of owned and ghost atoms.
@@ -650,7 +766,9 @@ void FixDPDSplit::sweep(const Stage &stage)
     for (int k = 0; k < 6; ++k) virial[k] += impulses[k] / update->dt;
 }
 
-void FixDPDSplit::full_force(const Stage &stage)
+/// An F stage: kick by `forces` (all or the pair group's conservative forces) plus the
+/// dissipative and random pair forces.
+void FixDPDSplit::full_force(const Stage &stage, const double *forces)
 {
   int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
   if (full_epoch != epoch) {
@@ -673,7 +791,7 @@ void FixDPDSplit::full_force(const Stage &stage)
     comm->reverse_comm(this);
     full_epoch = epoch;
   }
-  kick(stage.coeff * update->dt, full.data());
+  kick(stage.coeff * update->dt, forces, full.data());
   // A kick of coeff dt by these pair forces moves coeff dt F of momentum: per unit time coeff F.
   if (vflag_global)
     for (int k = 0; k < 6; ++k) virial[k] += stage.coeff * full_virial[k];

@@ -69,6 +69,21 @@ class FixDPDSplit : public Fix {
   int step_eflag, step_vflag;
   /// Counts position changes and re-neighbourings; the F evaluation is reused while it holds.
   long long epoch, full_epoch;
+  /// Counts drifts (and runs): with the neighbour-list build count, the positions and atom
+  /// order a force group's forces belong to.
+  long long moves;
+  /// The forces of one force group on the owned atoms (3 nlocal doubles) and the drift count
+  /// and neighbour-list build (neighbor->ncalls) they were computed at.
+  struct GroupForces {
+    std::vector<double> f;
+    long long moves = -1;
+    bigint build = -1;
+  };
+  /// For schemes whose stages name force groups (B[pair], B[bond]): the pair forces (all
+  /// forces less the bonded ones) and the bonded forces.
+  GroupForces pair_forces, bonded_forces;
+  /// Scratch: all forces on the owned atoms, kept across a bonded evaluation.
+  std::vector<double> saved_forces;
   /// The neighbour-list build (neighbor->ncalls) the colour buckets were made from.
   bigint colour_build;
   /// What the pack/unpack functions move: velocities forward, velocity changes or forces back.
@@ -86,15 +101,19 @@ class FixDPDSplit : public Fix {
 
   void run_stages(int from, int to);
   void drift(double h);
-  void kick(double h, const double *extra);
+  void kick(double h, const double *forces, const double *extra);
   void sweep(const DpdSplit::Stage &stage);
-  void full_force(const DpdSplit::Stage &stage);
+  void full_force(const DpdSplit::Stage &stage, const double *forces);
+  const double *forces_of(int group, bool final_positions);
+  bool current(const GroupForces &g) const;
+  void evaluate_bonded();
   void refresh(int eflag, int vflag);
   void refresh_ghosts();
   void check_subdomain_size();
   void check_exclusive();
   void check_cutoffs_and_tags();
   void check_trotter_input();
+  void check_groups();
   void prepare_atoms();
   void colour_pairs_of_list();
   void check_status(int status, const char *what);

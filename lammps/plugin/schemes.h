@@ -8,12 +8,18 @@ namespace DpdSplit {
 /// The sub-flows of the scheme language (docs/algorithms.md section 2).
 enum Flow { FLOW_A = 0, FLOW_B = 1, FLOW_O = 2, FLOW_OB = 3, FLOW_T = 4, FLOW_F = 5 };
 
-/// One stage of a step: flow, step length `coeff * dt`, random stream, sweep order.
+/// The forces a B or F stage applies: all of them, or one force group of the scheme language
+/// (`B[pair]`: the pair styles; `B[bond]`: the bond, angle, dihedral and improper styles).
+enum Group { GROUP_ALL = 0, GROUP_PAIR = 1, GROUP_BOND = 2 };
+
+/// One stage of a step: flow, step length `coeff * dt`, random stream, sweep order, and for B
+/// and F the force group it applies.
 struct Stage {
   int flow;
   double coeff;
   int stream;
   int reverse;
+  int group;
 };
 
 /// An exported scheme: the name given to the exporter, its lowercase identifier (the name the

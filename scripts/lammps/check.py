@@ -14,7 +14,11 @@ Evidence (each check states its tolerance where it defines it):
 - tally: ABOBA's `tally evaluation` energy against dpd run of B(1/2) O B(1/2) A;
 - bad input: LAMMPS errors naming the problem, never a crash; exporter refusals;
 - data files: a mixture written by `dpd run --write-data` read by LAMMPS, and LAMMPS's
-  write_data read by `dpd run --init`, in the same state.
+  write_data read by `dpd run --init`, in the same state;
+- melt: force groups on a bead-spring melt: the plugin's ABOBA and MTS ABOBA (bonds on an
+  inner step) against LAMMPS's pair dpd + bond harmonic + fix nve in mean bond length and
+  pressure; an MTS scheme with inner count 1 repeats its flat scheme bitwise; T beside
+  B[bond]; refusals of what no group holds.
 """
 
 import argparse
@@ -39,6 +43,12 @@ SCHEMES = {"aboba": "aboba", "baoab": "baoab", "obabo": "obabo",
            "s_x1_s_x0_s_x1_o": "S(x1) S(x0) S(x1) O", "vv": "vv", "sas": "sas", "dpd_s1": "dpd-s1"}
 # The schemes with T stages, whose exact pair update includes dpd/soft's conservative force.
 TROTTER = {"sas"}
+# Force groups (exported by scripts/test-lammps.sh): ABOBA with each half drift replaced by two
+# Strang steps of A and B[bond] (algorithms.md section 4: invariant-measure order 2); the
+# r-RESPA splitting with O outside at inner count 1, which is OBABO; SAS with bonds on B[bond].
+MTS_ABOBA = "(B[bond](1/8) A(1/4) B[bond](1/8))^2 B[pair](1/2) O B[pair](1/2) (B[bond](1/8) A(1/4) B[bond](1/8))^2"
+RESPA_ONE = "O(1/2) B[pair](1/2) (B[bond](1/2) A B[bond](1/2))^1 B[pair](1/2) O(1/2)"
+SAS_BONDS = "T(1/2) B[bond](1/2) A B[bond](1/2) T(1/2)"
 
 
 def check(ok, what):
@@ -606,6 +616,142 @@ def tally(args):
     check(z > SIGMAS, f"  ... and differs from dpd run aboba's (end of step) {ends[0]:.4f} by {z:.1f} sigma")
 
 
+def melt_data(path, chains=45, beads=10, bond=0.7, seed=11):
+    """A LAMMPS data file (atom_style bond) of `chains` linear chains of `beads` beads at density
+    3: random walks of steps `bond` from random starts, unwrapped (read_data wraps them)."""
+    import random
+    rng = random.Random(seed)
+    n = chains * beads
+    side = box_side(n)
+    atoms, bonds = [], []
+    for c in range(chains):
+        x = [rng.uniform(0, side) for _ in range(3)]
+        for b in range(beads):
+            if b:
+                d = [rng.gauss(0, 1) for _ in range(3)]
+                norm = math.sqrt(sum(v * v for v in d))
+                x = [x[k] + bond * d[k] / norm for k in range(3)]
+                bonds.append((len(atoms) - 1, len(atoms)))
+            atoms.append((c + 1, x))
+    with open(path, "w") as f:
+        f.write(f"bead-spring melt\n\n{n} atoms\n{len(bonds)} bonds\n1 atom types\n1 bond types\n\n"
+                f"0 {side!r} xlo xhi\n0 {side!r} ylo yhi\n0 {side!r} zlo zhi\n\nMasses\n\n1 1.0\n\nAtoms # bond\n\n")
+        for k, (mol, x) in enumerate(atoms):
+            f.write(f"{k + 1} {mol} 1 {x[0]!r} {x[1]!r} {x[2]!r}\n")
+        f.write("\nBonds\n\n")
+        for k, (i, j) in enumerate(bonds):
+            f.write(f"{k + 1} 1 {i + 1} {j + 1}\n")
+    return n
+
+
+# The melt: harmonic bonds K = 50 (LAMMPS's E = K (r - r0)^2, so 100 in the convention with
+# 1/2) and r0 = 0.7, the stiff-bond melt of docs/systems.md; bonded beads keep their soft
+# repulsion (special_bonds lj 1 1 1, the DPD convention).
+MELT_BOND = "bond_style harmonic\nbond_coeff 1 50.0 0.7"
+
+
+def melt_input(args, integrator, steps, dt, thermo, seed=2024, extra=""):
+    data = os.path.join(args.work, "melt.data")
+    return f"""
+units lj
+atom_style bond
+comm_modify vel yes
+special_bonds lj 1 1 1
+read_data {data}
+neighbor {SKIN} bin
+neigh_modify every 1 delay 0 check yes
+timestep {dt!r}
+velocity all create 1.0 {seed + 1} mom yes dist gaussian
+plugin load {args.plugin}
+{integrator}
+{extra}
+compute bonds all bond/local dist
+compute bond all reduce ave c_bonds inputs local
+thermo_style custom step temp press c_bond
+thermo_modify format float %.17g norm no
+thermo {thermo}
+run {steps}
+"""
+
+
+def melt(args):
+    """Force groups on a bead-spring melt (45 chains of 10 beads, 450 beads, 1 rank, gamma 4.5,
+    dt = 0.01, 500 + 6000 steps, thermo every 10; errors from 20 block means of 3 time units,
+    longer than the bond length's and the pressure's correlation times):
+    - the plugin's ABOBA (B applies pair dpd/soft and the bonds) and MTS ABOBA (B[pair] on the
+      outer step, B[bond] on two inner steps per half drift) against LAMMPS's pair dpd + bond
+      harmonic + fix nve: mean bond length and pressure (with the fix's pair impulses in the
+      virial, as pair dpd tallies its friction and noise) within 4 combined errors. Measured
+      biases at this dt lie well inside (the three agree within ~2 sigma); a B[bond] that also
+      applied the pair forces, or inner kicks of the wrong length, moves the bond length by
+      many errors;
+    - SAS with the bonds on B[bond] (T beside B[bond]) against the same;
+    - the r-RESPA splitting with inner count 1, O(1/2) B[pair](1/2) (B[bond](1/2) A
+      B[bond](1/2))^1 B[pair](1/2) O(1/2), repeats OBABO bitwise (200 steps, 17 digits);
+    - refusals: B[bond] without bonded styles, a force-adding fix beside a grouped scheme, and T
+      with bonds in a scheme without B[bond], each named."""
+    melt_data(os.path.join(args.work, "melt.data"))
+    dt, equil, steps = 0.01, 500, 6000
+    soft = "pair_style dpd/soft 1.0\npair_coeff 1 1 25.0\n" + MELT_BOND + "\n"
+    runs = {
+        "LAMMPS pair dpd + fix nve": f"pair_style dpd 1.0 1.0 4321\npair_coeff 1 1 25.0 {GAMMA} 1.0\n"
+                                     f"{MELT_BOND}\nfix 1 all nve",
+        "plugin aboba": soft + f"fix 1 all dpd/split aboba 1.0 {GAMMA} 1.0 4321\nfix_modify 1 virial yes",
+        "plugin MTS aboba": soft + f"fix 1 all dpd/split {identifier(MTS_ABOBA)} 1.0 {GAMMA} 1.0 4321\n"
+                                   "fix_modify 1 virial yes",
+        "plugin SAS with B[bond]": soft + f"fix 1 all dpd/split {identifier(SAS_BONDS)} 1.0 {GAMMA} 1.0 4321\n"
+                                          "fix_modify 1 virial yes",
+    }
+    results = {}
+    for name, integrator in runs.items():
+        code, out = run_lammps(args, melt_input(args, integrator, equil + steps, dt, 10), 1, "melt")
+        rows = [r for r in thermo_rows(out) if r[0] > equil]
+        if code != 0 or not rows:
+            check(False, f"melt, {name} ran: {out[-2000:]}")
+            return
+        results[name] = [mean_and_error([r[c] for r in rows]) for c in (3, 2)]
+        print(f"     melt dt={dt}: {name}: bond length {results[name][0][0]:.5f} +- {results[name][0][1]:.5f}, "
+              f"pressure {results[name][1][0]:.4f} +- {results[name][1][1]:.4f}", flush=True)
+    ref = results.pop("LAMMPS pair dpd + fix nve")
+    for name, mine in results.items():
+        for k, key in enumerate(("mean bond length", "pressure")):
+            check(agree(mine[k], ref[k]), f"melt: {name} {key} {mine[k][0]:.5f} +- {mine[k][1]:.5f} vs LAMMPS "
+                                          f"{ref[k][0]:.5f} +- {ref[k][1]:.5f} ({sigmas_apart(mine[k], ref[k]):.1f} sigma)")
+    rows = {}
+    for scheme in ("obabo", identifier(RESPA_ONE)):
+        text = melt_input(args, soft + f"fix 1 all dpd/split {scheme} 1.0 {GAMMA} 1.0 4321", 200, dt, 20)
+        code, out = run_lammps(args, text, 1, "melt-bits")
+        rows[scheme] = thermo_rows(out) if code == 0 else out[-2000:]
+    check(rows["obabo"] and rows["obabo"] == rows[identifier(RESPA_ONE)],
+          f"melt: {RESPA_ONE} repeats obabo bitwise (thermo rows of 17 digits)")
+    refusals = [
+        ("B[bond] without bonded styles", lammps_input(args.plugin, plugin_fix(identifier(MTS_ABOBA)), 10, 0.01, 10, n=500),
+         "its B[bond] stages need bonded forces, but the input defines no bond"),
+        ("a force-adding fix beside B[pair] and B[bond]",
+         melt_input(args, soft + f"fix 1 all dpd/split {identifier(MTS_ABOBA)} 1.0 {GAMMA} 1.0 4321\n"
+                    "fix 2 all addforce 0.1 0.0 0.0", 10, dt, 10),
+         "fix 2 (style addforce) cannot be run: it adds forces after the force evaluation"),
+        ("T with bonds and no B[bond]", melt_input(args, soft + f"fix 1 all dpd/split sas 1.0 {GAMMA} 1.0 4321", 10, dt, 10),
+         "also defines bond_style harmonic, whose force a T update would leave out"),
+    ]
+    for what, text, message in refusals:
+        code, out = run_lammps(args, text, 1, "melt-bad")
+        check(code != 0 and message in out, f"melt, bad input, {what}: LAMMPS error containing {message!r}")
+
+
+def identifier(name):
+    """The fix's identifier of an exported scheme string (dpd-cli's export::lammps::identifier):
+    lowercase letters and digits kept, every other run of characters one `_`."""
+    out = ""
+    for c in name.strip():
+        if c.isascii() and c.isalnum():
+            out += c.lower()
+        elif not out.endswith("_"):
+            out += "_"
+    out = out.strip("_")
+    return "s" + out if out[:1].isdigit() else out
+
+
 def bad_input(args):
     cases = [
         ("unknown scheme", "fix 1 all dpd/split abobq 1.0 4.5 1.0 4321", "scheme 'abobq' is not compiled"),
@@ -759,7 +905,7 @@ def main():
                    help="temp: measure each --scheme's temp/split against dpd run (by hand)")
     p.add_argument("--shear-time", type=float, default=400.0, help="shear: time units per run")
     p.add_argument("--only", choices=["equilibrium", "repeat", "bad", "shear", "soft", "trotter", "pairs", "restart", "temp",
-                            "tally", "data"],
+                            "tally", "data", "melt"],
                    action="append")
     args = p.parse_args()
     args.scheme = args.scheme or [k for k in SCHEMES if k != "dpd_s1"]
@@ -767,7 +913,8 @@ def main():
     os.makedirs(args.work, exist_ok=True)
     parts = {"bad": bad_input, "repeat": repeat_and_momentum, "equilibrium": equilibrium,
              "shear": shear, "soft": soft_pair, "trotter": trotter, "pairs": per_pair,
-             "restart": restart, "temp": temp_split, "tally": tally, "data": data_files}
+             "restart": restart, "temp": temp_split, "tally": tally, "data": data_files,
+             "melt": melt}
     for name in args.only or ["bad", "repeat", "equilibrium"]:
         parts[name](args)
     if FAILURES:

@@ -1,13 +1,14 @@
 //! The LAMMPS plugin source tree of `dpd export lammps` (docs/lammps.md): the fixed runtime of
 //! `lammps/plugin/` (embedded at compile time, its `CMakeLists.txt` included), a generated
 //! `schemes.cpp` with the stage table of every exported scheme (dpd-ir's merged [`Program`]
-//! stages, the ones `dpd check` analyses), and the `dpd-lammps` kernels as a prebuilt static
+//! stages, the ones `dpd check` analyses, repetitions written out, with adjacent kicks of the
+//! two force groups by one coefficient joined into one kick: [`joined_kicks`]), and the `dpd-lammps` kernels as a prebuilt static
 //! library, `kernels/libdpd_lammps.a`, so that the tree builds with CMake, a C++17 compiler and
 //! LAMMPS alone.
 
 use dpd::lang::{compile_with, Options};
 use dpd::schemes::registry::lookup;
-use dpd::{Flow, Program, SweepOrder};
+use dpd::{Flow, ForceGroup, Program, SweepOrder};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -80,10 +81,10 @@ pub struct Exported {
     pub consistent: bool,
 }
 
-/// The program of a registry name or scheme string, or why it cannot be exported: unknown
-/// (the registry's message), hand-written, naming force groups (`B[bond]`), or inconsistent
-/// without `allow_inconsistent`. Every letter runs in the plugin (T only with `pair_style
-/// dpd/soft`, which the fix checks).
+/// The program of a registry name or scheme string (its kicks joined by [`joined_kicks`]), or
+/// why it cannot be exported: unknown (the registry's message), hand-written, or inconsistent
+/// without `allow_inconsistent`. Every letter and force group runs in the plugin (T only with
+/// `pair_style dpd/soft`, `B[bond]` only with bonded styles, which the fix checks).
 pub fn resolve(name: &str, allow_inconsistent: bool) -> Result<Exported, String> {
     let (label, program) = match lookup(name) {
         Ok(entry) => match entry.scheme().program() {
@@ -114,12 +115,7 @@ pub fn resolve(name: &str, allow_inconsistent: bool) -> Result<Exported, String>
             }
         }
     };
-    if program.stages.iter().any(|s| s.group.is_some()) {
-        return Err(format!(
-            "scheme '{name}' = {program} names force groups, which the plugin does not run: its \
-             kicks apply every force style of LAMMPS; write B and F without a group"
-        ));
-    }
+    let program = joined_kicks(program);
     let consistent = program.analysis().consistent;
     if !consistent && !allow_inconsistent {
         return Err(format!(
@@ -133,6 +129,39 @@ pub fn resolve(name: &str, allow_inconsistent: bool) -> Result<Exported, String>
         program,
         consistent,
     })
+}
+
+/// `program` with each pair of adjacent stages `B[pair](c) B[bond](c)` (either order, equal
+/// coefficients) joined into one `B(c)`. Kicks of different groups commute (algorithms.md
+/// section 4), so the step is the same map; in the plugin the joined kick applies LAMMPS's own
+/// sum of all forces, where two kicks would need the forces split by group (a bonded
+/// evaluation and a difference). So a multiple-time-stepping scheme with inner count 1, such as
+/// `O(1/2) B[pair](1/2) (B[bond](1/2) A B[bond](1/2))^1 B[pair](1/2) O(1/2)`, runs as the flat
+/// scheme (OBABO), bit for bit. The order analysis is unchanged (it reads the unmerged stages).
+pub fn joined_kicks(mut program: Program) -> Program {
+    let mut stages: Vec<dpd::Stage> = Vec::with_capacity(program.stages.len());
+    for stage in program.stages {
+        let complementary = |a: Option<ForceGroup>, b: Option<ForceGroup>| {
+            matches!(
+                (a, b),
+                (Some(ForceGroup::Pair), Some(ForceGroup::Bond))
+                    | (Some(ForceGroup::Bond), Some(ForceGroup::Pair))
+            )
+        };
+        match stages.last_mut() {
+            Some(top)
+                if top.flow == Flow::B
+                    && stage.flow == Flow::B
+                    && complementary(top.group, stage.group)
+                    && top.coeff == stage.coeff =>
+            {
+                top.group = None;
+            }
+            _ => stages.push(stage),
+        }
+    }
+    program.stages = stages;
+    program
 }
 
 /// A lowercase C identifier for a scheme name: letters and digits kept, every other run of
@@ -186,6 +215,15 @@ fn flow_name(flow: Flow) -> &'static str {
     }
 }
 
+/// The C++ enumerator of a stage's force group (schemes.h): all forces, or one group.
+fn group_name(group: Option<ForceGroup>) -> &'static str {
+    match group {
+        None => "GROUP_ALL",
+        Some(ForceGroup::Pair) => "GROUP_PAIR",
+        Some(ForceGroup::Bond) => "GROUP_BOND",
+    }
+}
+
 /// `schemes.cpp`: the stage tables of `schemes`.
 pub fn schemes_cpp(schemes: &[Exported]) -> String {
     let mut out = String::from(
@@ -198,11 +236,12 @@ pub fn schemes_cpp(schemes: &[Exported]) -> String {
         for stage in &s.program.stages {
             let _ = writeln!(
                 out,
-                "    {{{}, {:?}, {}, {}}},",
+                "    {{{}, {:?}, {}, {}, {}}},",
                 flow_name(stage.flow),
                 stage.coeff.value,
                 stage.stream,
-                u8::from(stage.order == SweepOrder::Reverse)
+                u8::from(stage.order == SweepOrder::Reverse),
+                group_name(stage.group)
             );
         }
         out.push_str("};\n\n");
@@ -291,8 +330,6 @@ mod tests {
             "{inconsistent}"
         );
         assert!(!resolve("A B(1/2) O", true).unwrap().consistent);
-        let grouped = resolve("A B[pair] O B[pair] A", false).unwrap_err();
-        assert!(grouped.contains("names force groups"), "{grouped}");
     }
 
     #[test]
@@ -304,8 +341,58 @@ mod tests {
         deduplicate(&mut schemes);
         assert_eq!(schemes[1].ident, "baooab_2");
         let cpp = schemes_cpp(&schemes);
-        assert!(cpp.contains("static const Stage stages_baooab[] = {\n    {FLOW_B, 0.5, 0, 0},\n    {FLOW_A, 0.5, 0, 0},\n    {FLOW_O, 0.5, 0, 0},\n    {FLOW_O, 0.5, 1, 1},"), "{cpp}");
+        assert!(cpp.contains("static const Stage stages_baooab[] = {\n    {FLOW_B, 0.5, 0, 0, GROUP_ALL},\n    {FLOW_A, 0.5, 0, 0, GROUP_ALL},\n    {FLOW_O, 0.5, 0, 0, GROUP_ALL},\n    {FLOW_O, 0.5, 1, 1, GROUP_ALL},"), "{cpp}");
         assert!(cpp.contains("const int NSCHEMES = 2;"));
+    }
+
+    /// Repetition is written out and each stage carries its group; adjacent kicks of the two
+    /// groups with one coefficient become one kick of all forces, others stay apart.
+    #[test]
+    fn force_groups_and_repetition_are_exported_with_joined_kicks() {
+        let respa = resolve(
+            "B[pair](1/2) (B[bond](1/8) A(1/4) B[bond](1/8))^4 O B[pair](1/2)",
+            false,
+        )
+        .unwrap();
+        let table: Vec<(Flow, Option<ForceGroup>)> = respa
+            .program
+            .stages
+            .iter()
+            .map(|s| (s.flow, s.group))
+            .collect();
+        let (pair, bond) = (Some(ForceGroup::Pair), Some(ForceGroup::Bond));
+        let mut expected = vec![(Flow::B, pair), (Flow::B, bond)];
+        for k in 0..4 {
+            expected.push((Flow::A, None));
+            expected.push((Flow::B, bond));
+            assert_eq!(
+                respa.program.stages[2 + 2 * k + 1].coeff.value,
+                0.25 - (k / 3) as f64 * 0.125
+            );
+        }
+        expected.extend([(Flow::O, None), (Flow::B, pair)]);
+        assert_eq!(table, expected);
+        let cpp = schemes_cpp(&[respa]);
+        assert!(cpp.contains("{FLOW_B, 0.125, 0, 0, GROUP_BOND},"), "{cpp}");
+        assert!(cpp.contains("{FLOW_B, 0.5, 0, 0, GROUP_PAIR},"), "{cpp}");
+        // Inner count 1 of the r-RESPA splitting with O outside: OBABO's table, bit for bit.
+        let one = resolve(
+            "O(1/2) B[pair](1/2) (B[bond](1/2) A B[bond](1/2))^1 B[pair](1/2) O(1/2)",
+            false,
+        )
+        .unwrap();
+        let obabo = resolve("obabo", false).unwrap();
+        assert_eq!(one.program.stages, obabo.program.stages);
+        assert_eq!(one.program.to_string(), obabo.program.to_string());
+        // Unequal coefficients or a stage between: kept apart.
+        let apart = joined_kicks(
+            compile_with(
+                "B[pair](1/2) B[bond](1/4) A B[bond](3/4) O B[pair](1/2)",
+                &Options::default(),
+            )
+            .unwrap(),
+        );
+        assert_eq!(apart.stages.iter().filter(|s| s.group.is_some()).count(), 4);
     }
 
     #[test]
