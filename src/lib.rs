@@ -13,7 +13,7 @@
 //! is `examples/quick_start.rs`, shown in README.md and run by `tests/readme.rs`.
 
 pub use dpd_core::{
-    boundary, checkpoint, error, flow, init, metropolis, neighbour, observe, pairs, params,
+    bonded, boundary, checkpoint, error, flow, init, metropolis, neighbour, observe, pairs, params,
     reference, rng, scheme, system, AdvanceError, BlowUp, CheckpointError, DynScheme, Flow,
     ForceGroup, ParamError, Params, PeriodicBox, Scheme, Stage, SweepOrder, System, SystemBuilder,
     Vec3,

@@ -21,7 +21,17 @@ fn standard_box() -> System {
 /// Runs both schemes from the same standard box and asserts bitwise equal states after every
 /// step.
 fn assert_same_trajectory(a: &impl Scheme, b: &impl Scheme, steps: u64) {
-    let (mut sa, mut sb) = (standard_box(), standard_box());
+    assert_same_trajectory_from(standard_box, a, b, steps);
+}
+
+/// [`assert_same_trajectory`] from the state `start` makes.
+fn assert_same_trajectory_from(
+    start: fn() -> System,
+    a: &impl Scheme,
+    b: &impl Scheme,
+    steps: u64,
+) {
+    let (mut sa, mut sb) = (start(), start());
     for step in 0..steps {
         sa.advance(a, 1).unwrap();
         sb.advance(b, 1).unwrap();
@@ -106,6 +116,49 @@ fn pair_groups_run_bitwise_as_the_ungrouped_scheme() {
     );
     assert_same_trajectory(
         &dpd_scheme!("F[pair](1/2) A F[pair](1/2)"),
+        &reference::VelocityVerlet,
+        200,
+    );
+}
+
+/// On a melt of bonded chains (harmonic and FENE bonds, both angle styles), r-RESPA with the
+/// bonds on the inner step runs bit for bit the same from `dpd_scheme!` and from the run-time
+/// compiler, and so do ABOBA and velocity Verlet, which apply all forces together.
+#[test]
+fn bonded_melt_runs_the_same_from_the_macro_and_the_compiler() {
+    use dpd::bonded::{AngleStyle, BondStyle};
+    fn melt() -> System {
+        let bonds = [
+            BondStyle::Harmonic { k: 50.0, r0: 0.7 },
+            BondStyle::Fene {
+                k: 30.0,
+                r_max: 1.5,
+            },
+        ];
+        let angles = [
+            AngleStyle::Cosine { k: 2.0 },
+            AngleStyle::CosineSquared {
+                k: 5.0,
+                theta0: 2.5,
+            },
+        ];
+        let params = dpd::Params::builder();
+        common::chain_melt(50, 6, params, &bonds, &angles, 0.7, SEED)
+            .dt(DT)
+            .build()
+            .unwrap()
+    }
+    const RESPA: &str = "B[pair](1/2) (B[bond](1/8) A(1/4) B[bond](1/8))^4 O B[pair](1/2)";
+    assert_same_trajectory_from(
+        melt,
+        &dpd_scheme!("B[pair](1/2) (B[bond](1/8) A(1/4) B[bond](1/8))^4 O B[pair](1/2)"),
+        &dynamic(RESPA),
+        200,
+    );
+    assert_same_trajectory_from(melt, &dpd_scheme!("ABOBA"), &reference::Aboba, 200);
+    assert_same_trajectory_from(
+        melt,
+        &dpd_scheme!("F(1/2) A F(1/2)"),
         &reference::VelocityVerlet,
         200,
     );

@@ -243,7 +243,7 @@ mod tests {
         let mut t = Topology::builder(200);
         t.bond_types = vec![BondStyle::Fene {
             k: 30.0,
-            r_max: 1.5,
+            r_max: 4.0,
         }];
         t.bonds = vec![Bond {
             i: 7,

@@ -79,9 +79,6 @@ impl System {
         };
         let has = self.force_groups();
         let refuse = |why: String| Err(ParamError::new("scheme", scheme.name(), why));
-        if self.topology().is_some_and(|t| !t.is_empty()) {
-            return refuse("this system has bonds or angles, whose forces dpd-core does not evaluate yet (issue 46)".to_string());
-        }
         if let Some(&g) = program.named_groups().iter().find(|g| !has.contains(g)) {
             let name = dpd_ir::lang::letters::group_spelling(g);
             return refuse(format!(

@@ -13,9 +13,11 @@
 //! A [`Topology`] names particles by id; the system holds it with its bonds and angles also in
 //! storage indices ([`Located`]), refreshed whenever the particles are re-sorted.
 
+mod forces;
 mod style;
 mod topology;
 
+pub(crate) use forces::{Frame, Overstretch};
 pub use style::{AngleStyle, BondStyle};
 pub use topology::{Angle, Bond, Topology, TopologyBuilder};
 
@@ -62,12 +64,12 @@ impl Located {
         &self.topology
     }
     /// The bonds in storage indices.
-    #[allow(dead_code)] // read by the bonded forces
+    #[cfg(test)]
     pub(crate) fn bonds(&self) -> &[Bond] {
         &self.bonds
     }
     /// The angles in storage indices.
-    #[allow(dead_code)] // read by the bonded forces
+    #[cfg(test)]
     pub(crate) fn angles(&self) -> &[Angle] {
         &self.angles
     }

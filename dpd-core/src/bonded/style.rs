@@ -76,3 +76,64 @@ impl AngleStyle {
         Ok(())
     }
 }
+
+impl BondStyle {
+    /// The energy at length `r`.
+    #[inline]
+    pub fn energy(&self, r: f64) -> f64 {
+        match *self {
+            BondStyle::Harmonic { k, r0 } => k * (r - r0) * (r - r0),
+            BondStyle::Fene { k, r_max } => {
+                -0.5 * k * r_max * r_max * (1.0 - (r * r) / (r_max * r_max)).ln()
+            }
+        }
+    }
+
+    /// `-E'(r) / r` at squared length `r2`: the force on `i` is this times `q_i - q_j`.
+    /// Harmonic: `-2K (r - r0) / r` (`-2K` when `r0 = 0`, also at `r = 0`); FENE: `-K / (1 -
+    /// r^2/R0^2)`, meaningless once `r >= R0` ([`Self::overstretched`]).
+    #[inline]
+    pub fn force_over_r(&self, r2: f64) -> f64 {
+        match *self {
+            BondStyle::Harmonic { k, r0: 0.0 } => -2.0 * k,
+            BondStyle::Harmonic { k, r0 } => {
+                let r = r2.sqrt();
+                -2.0 * k * (r - r0) / r
+            }
+            BondStyle::Fene { k, r_max } => -k / (1.0 - r2 / (r_max * r_max)),
+        }
+    }
+
+    /// Whether a bond of squared length `r2` is beyond the style's reach: a FENE bond at or
+    /// past `R0` (or a non-finite length).
+    #[inline]
+    pub(crate) fn overstretched(&self, r2: f64) -> bool {
+        match *self {
+            BondStyle::Harmonic { .. } => !r2.is_finite(),
+            BondStyle::Fene { r_max, .. } => r2 >= r_max * r_max || r2.is_nan(),
+        }
+    }
+}
+
+impl AngleStyle {
+    /// The energy at `c = cos theta`.
+    #[inline]
+    pub fn energy(&self, c: f64) -> f64 {
+        match *self {
+            AngleStyle::Cosine { k } => k * (1.0 + c),
+            AngleStyle::CosineSquared { k, theta0 } => {
+                let d = c - theta0.cos();
+                k * d * d
+            }
+        }
+    }
+
+    /// `dE / d cos theta` at `c = cos theta`.
+    #[inline]
+    pub fn slope(&self, c: f64) -> f64 {
+        match *self {
+            AngleStyle::Cosine { k } => k,
+            AngleStyle::CosineSquared { k, theta0 } => 2.0 * k * (c - theta0.cos()),
+        }
+    }
+}

@@ -36,10 +36,10 @@ pub fn kick(sys: &mut System, h: f64) {
 /// - [`ForceGroup::Pair`]: the conservative pair forces from their cache (evaluated from the
 ///   pair table when stale), plus `h g` with a body force `g` (the body force is a pair-group
 ///   force: see [`ForceGroup::Pair`]).
-/// - [`ForceGroup::Bond`]: the bonded forces. `dpd-core` models no bonds yet, so every system
-///   is without bonded forces and their kick adds nothing; [`System::advance`] refuses a
-///   scheme that names `B[bond]` on such a system before its first step
-///   ([`System::check_scheme`]), so no run takes this for a bonded kick.
+/// - [`ForceGroup::Bond`]: the bonds and angles of the system's topology (see
+///   [`crate::bonded`]), from their cache (evaluated when stale); nothing without a topology
+///   ([`System::advance`] refuses a scheme that names `B[bond]` on a system without bonded
+///   forces, [`System::check_scheme`]).
 #[inline]
 pub fn kick_group(sys: &mut System, h: f64, group: ForceGroup) {
     match group {
@@ -48,7 +48,11 @@ pub fn kick_group(sys: &mut System, h: f64, group: ForceGroup) {
             add_scaled(p, h, force);
             sys.apply_body_force(h);
         }
-        ForceGroup::Bond => {}
+        ForceGroup::Bond => {
+            if let Some((p, force)) = sys.momenta_and_bonded() {
+                add_scaled(p, h, force);
+            }
+        }
     }
 }
 

@@ -115,19 +115,22 @@ pub fn hamiltonian(sys: &mut System) -> f64 {
     sys.kinetic_energy() + potential_energy(sys)
 }
 
-/// The potential energy `U = sum over pairs of phi(r_ij)`.
+/// The potential energy `U = sum over pairs of phi(r_ij)` plus the bonded energy
+/// ([`System::bonded_energy`]: bonds and angles, 0 without a topology).
 pub fn potential_energy(sys: &mut System) -> f64 {
-    sys.with_forces(|sys, pairs, _| {
-        pairs
-            .iter()
-            .map(|pair| {
-                let kind = sys.kinds();
-                sys.params()
-                    .soft(kind[pair.i as usize], kind[pair.j as usize])
-                    .energy(pair.w)
-            })
-            .sum()
-    })
+    let bonded = sys.bonded_energy();
+    bonded
+        + sys.with_forces(|sys, pairs, _| {
+            pairs
+                .iter()
+                .map(|pair| {
+                    let kind = sys.kinds();
+                    sys.params()
+                        .soft(kind[pair.i as usize], kind[pair.j as usize])
+                        .energy(pair.w)
+                })
+                .sum::<f64>()
+        })
 }
 
 #[cfg(test)]

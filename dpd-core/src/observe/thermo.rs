@@ -10,7 +10,7 @@ pub struct Thermo {
     pub config_numerator: f64,
     /// Denominator of the configurational temperature, `sum_i lap_i U`.
     pub config_denominator: f64,
-    /// Potential energy per particle, `U / N`.
+    /// Potential energy per particle, `U / N`, pairs and bonds.
     pub potential_energy: f64,
     /// Virial pressure `N k_B T_K / V + sum_pairs q_ij . F^C_ij / (3 V)`.
     pub pressure: f64,
@@ -51,6 +51,7 @@ pub fn thermo(sys: &mut System) -> Thermo {
     let n = sys.len() as f64;
     let volume = sys.boundary().volume();
     let tk = kinetic_temperature(sys);
+    let bonded = sys.bonded_energy();
     let (u, lap, virial, numerator) = sys.with_forces(|sys, pairs, forces| {
         let (params, kind) = (sys.params(), sys.kinds());
         let (mut u, mut lap, mut virial) = (0.0, 0.0, 0.0);
@@ -67,7 +68,7 @@ pub fn thermo(sys: &mut System) -> Thermo {
         kinetic_temperature: tk,
         config_numerator: numerator,
         config_denominator: lap,
-        potential_energy: u / n,
+        potential_energy: (u + bonded) / n,
         pressure: n * tk / volume + virial / (3.0 * volume),
     }
 }

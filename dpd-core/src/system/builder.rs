@@ -252,6 +252,9 @@ impl SystemBuilder {
             conservative_at: Stamp::default(),
             full: Vec::new(),
             full_at: Stamp::default(),
+            bonded_forces: Vec::new(),
+            bonded_at: Stamp::default(),
+            overstretch: None,
             full_virial: None,
             impulses: None,
             heat: None,
@@ -261,6 +264,7 @@ impl SystemBuilder {
             backup: Default::default(),
         };
         sys.place(&self.q);
+        sys.check_bond_lengths()?;
         Ok(sys)
     }
 }

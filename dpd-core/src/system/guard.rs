@@ -27,7 +27,8 @@ pub(crate) struct Backup {
 
 impl System {
     /// Take `steps` steps with `step`, each guarded: a step that produces a non-finite
-    /// position or momentum, or that may have moved a particle between two checks of the
+    /// position or momentum, that evaluates the bonded forces with a bond beyond its reach (a
+    /// FENE bond at or past `R0`; the error names the bond and both ids), or that may have moved a particle between two checks of the
     /// neighbour list by more than half the shortest box edge less the skin (the sum of the
     /// largest drift lengths since the last check exceeds it: with a skin, the list's
     /// displacement test could no longer tell that move from one to another image; without
@@ -65,9 +66,12 @@ impl System {
         backup.heat = self.heat;
         backup.travel = self.travel;
         self.drift_bound = 0.0;
+        self.overstretch = None;
         step(self);
         let (edge, skin) = (self.bx.min_length(), self.list.skin());
-        let reason = if !self.drift_bound.is_finite() || !finite(&self.q) || !finite(&self.p) {
+        let reason = if let Some(o) = self.overstretch.take() {
+            Some(self.overstretch_reason(o))
+        } else if !self.drift_bound.is_finite() || !finite(&self.q) || !finite(&self.p) {
             Some("a position or momentum became non-finite".to_string())
         } else if self.drift_bound > 0.5 * (edge - skin) {
             Some(format!(

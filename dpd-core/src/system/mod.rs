@@ -1,6 +1,6 @@
 //! The state of a DPD system and the caches that let sub-flows share evaluations.
 
-use crate::bonded::{Located, Topology};
+use crate::bonded::{Located, Overstretch, Topology};
 use crate::boundary::{LeesEdwards, PeriodicBox};
 use crate::error::{finite_vectors, ParamError};
 use crate::neighbour::VerletList;
@@ -27,8 +27,8 @@ pub struct Counters {
     /// Evaluations of the pair forces: per-particle sums (conservative for B and B[pair],
     /// full for F and F[pair]) and the inline pair conservative forces of T sweeps.
     pub force_evaluations: u64,
-    /// Evaluations of the bonded forces (for B, F and B[bond]); a system without bonded
-    /// forces, as every system is until dpd-core models bonds, evaluates none.
+    /// Evaluations of the bonded forces (for B, F and B[bond]); a system without a topology
+    /// evaluates none.
     pub bonded_force_evaluations: u64,
 }
 
@@ -82,6 +82,11 @@ pub struct System {
     conservative_at: Stamp,
     full: Vec<Vec3>,
     full_at: Stamp,
+    /// Bonded forces (empty without a topology).
+    bonded_forces: Vec<Vec3>,
+    bonded_at: Stamp,
+    /// The first bond an evaluation of the step under way found beyond its reach.
+    overstretch: Option<Overstretch>,
     /// Pair virial of the dissipative and random parts of `full`, when impulses were being
     /// recorded as it was evaluated.
     full_virial: Option<Tensor>,
@@ -103,6 +108,7 @@ pub struct System {
     backup: Backup,
 }
 
+mod bonds;
 mod builder;
 mod forces;
 mod guard;
@@ -206,9 +212,14 @@ impl System {
         self.list.skin()
     }
     /// The force groups the system has, each a part of the forces a scheme may kick on its own
-    /// (`B[pair]`, `B[bond]`): the pair forces only, as dpd-core models no bonded forces yet.
+    /// (`B[pair]`, `B[bond]`): the pair forces, and the bonded forces when the topology has
+    /// some bond or angle.
     pub fn force_groups(&self) -> &[ForceGroup] {
-        &[ForceGroup::Pair]
+        if self.has_bonded_forces() {
+            &ForceGroup::ALL
+        } else {
+            &[ForceGroup::Pair]
+        }
     }
     /// Number of neighbour-list builds so far.
     pub fn list_builds(&self) -> u64 {
@@ -376,6 +387,9 @@ impl System {
         debug_assert!(!self.conservative_at.is_fresh(self.positions));
         if self.full_at.is_fresh(self.positions) {
             permute(&mut self.full, order);
+        }
+        if self.bonded_at.is_fresh(self.positions) {
+            permute(&mut self.bonded_forces, order);
         }
         self.list
             .build(&self.q, &self.bx, self.shear.as_ref(), self.params.rc());

@@ -1,8 +1,9 @@
 //! Shared set-up of the core's integration tests.
 #![allow(dead_code)]
 
+use dpd_core::bonded::{Angle, AngleStyle, Bond, BondStyle, Topology};
 use dpd_core::flow::{bbk, drift, full_force, kick, ou, trotter};
-use dpd_core::init::equilibrium_box;
+use dpd_core::init::{equilibrium_box, maxwell_momenta};
 use dpd_core::params::ParamsBuilder;
 use dpd_core::{AdvanceError, BlowUp, Params, Scheme, SweepOrder, System, Vec3};
 
@@ -20,6 +21,58 @@ pub fn system(n: usize, density: f64, params: ParamsBuilder, dt: f64, seed: u64)
 /// k_B T = 1) with friction `gamma`.
 pub fn standard_box(gamma: f64, dt: f64, seed: u64) -> System {
     system(500, 3.0, Params::builder().gamma(gamma), dt, seed)
+}
+
+/// `chains` linear chains of `length` unit-mass beads at density 3 with pair parameters
+/// `params`: bead `c length + k` of chain `c`, bonds between neighbours with the styles of
+/// `bonds` in turn along the chain, an angle at each inner bead with the styles of `angles` in
+/// turn (none if empty). Each chain starts at a uniform position and walks steps of length
+/// `step` in random directions; Maxwell momenta.
+pub fn chain_melt(
+    chains: usize,
+    length: usize,
+    params: ParamsBuilder,
+    bonds: &[BondStyle],
+    angles: &[AngleStyle],
+    step: f64,
+    seed: u64,
+) -> dpd_core::SystemBuilder {
+    let n = chains * length;
+    let base = equilibrium_box(params.build().unwrap(), n, 3.0, seed)
+        .unwrap()
+        .build()
+        .unwrap();
+    let start = base.positions();
+    let directions = maxwell_momenta(&vec![1.0; n], 1.0, seed + 1);
+    let mut q = Vec::with_capacity(n);
+    let mut t = Topology::builder(n);
+    t.bond_types = bonds.to_vec();
+    t.angle_types = angles.to_vec();
+    for (c, &first) in start.iter().enumerate().take(chains) {
+        for k in 0..length {
+            let id = c * length + k;
+            if k == 0 {
+                q.push(first);
+                continue;
+            }
+            q.push(q[id - 1] + step * directions[id].normalize());
+            let kind = ((k - 1) % bonds.len()) as u16;
+            t.bonds.push(Bond {
+                i: id as u32 - 1,
+                j: id as u32,
+                kind,
+            });
+            if k >= 2 && !angles.is_empty() {
+                let kind = ((k - 2) % angles.len()) as u16;
+                let (i, j, k) = (id as u32 - 2, id as u32 - 1, id as u32);
+                t.angles.push(Angle { i, j, k, kind });
+            }
+        }
+    }
+    System::builder(base.params().clone(), *base.boundary(), q)
+        .momenta(base.momenta().to_vec())
+        .seed(seed)
+        .topology(t.build().unwrap())
 }
 
 /// The standard box (gamma = 4.5, seed 3) with every particle at rest but the first, which
