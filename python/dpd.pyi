@@ -49,6 +49,12 @@ class SceneKeys(TypedDict, total=False):
     init: str
     init_reset: bool
     energy_balance: bool
+    like_neighbours: bool
+    species: Sequence[_Table]
+    pairs: _Table
+    bond_types: Sequence[_Table]
+    angle_types: Sequence[_Table]
+    molecules: Sequence[_Table]
 
 class BlowUpError(RuntimeError):
     """A step produced a non-finite value or moved a particle too far."""
@@ -168,6 +174,38 @@ class Simulation:
 
     @velocities.setter
     def velocities(self, value: npt.ArrayLike) -> None: ...
+    @property
+    def typeid(self) -> npt.NDArray[np.int64]:
+        """(N,) type of each particle, an index into `types`."""
+
+    @property
+    def types(self) -> list[str]:
+        """Names of the particle types (the species, else A, B, ...)."""
+
+    @property
+    def masses(self) -> npt.NDArray[np.float64]:
+        """(N,) mass of each particle."""
+
+    @property
+    def bonds(self) -> npt.NDArray[np.int64]:
+        """(B, 2) particle ids of each bond."""
+
+    @property
+    def bond_typeid(self) -> npt.NDArray[np.int64]: ...
+    @property
+    def bond_types(self) -> list[str]: ...
+    @property
+    def angles(self) -> npt.NDArray[np.int64]:
+        """(A, 3) particle ids (i, j, k) of each angle, j the vertex."""
+
+    @property
+    def angle_typeid(self) -> npt.NDArray[np.int64]: ...
+    @property
+    def angle_types(self) -> list[str]: ...
+    @property
+    def chains(self) -> list[npt.NDArray[np.int64]]:
+        """Particle ids along each linear chain of bonds."""
+
     @property
     def step(self) -> int: ...
     @property

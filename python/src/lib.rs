@@ -8,6 +8,7 @@
 mod keys;
 mod measure;
 mod simulation;
+mod topology;
 mod wait;
 
 use dpd_ir::lang::split_schemes;

@@ -3,6 +3,7 @@
 
 use crate::keys::{os_error, scene_of};
 use crate::measure::{self, sample_steps, Measurement, Samples};
+use crate::topology::{self, by_id};
 use crate::{invalid, to_python, wait, BlowUpError};
 use dpd_core::observe::thermo;
 use dpd_core::{AdvanceError, CheckpointError, ParamError, Scheme, System, Vec3};
@@ -15,7 +16,7 @@ use dpd_measure::Scene;
 use dpd_schemes::check::CheckError;
 use dpd_schemes::registry::resolve_with;
 use numpy::ndarray::Array2;
-use numpy::{IntoPyArray, PyArray2, PyReadonlyArrayDyn, PyUntypedArrayMethods};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArrayDyn, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -26,7 +27,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 /// Steps between checks for Ctrl-C within `run` and `measure`.
 const CHUNK: u64 = 50;
 
-/// Simulation(*, allow_inconsistent=False, scene=None, scheme=None, dt=None, n=None, density=None, box=None, a=None, gamma=None, kbt=None, mass=None, weight_exponent=None, seed=None, threads=None, skin=None, shear_rate=None, body_force=None, walls=None, init=None, init_reset=None, trajectory=None, time=None, average_fraction=None, sample_interval=None, runs=None, energy_balance=None, rdf=None, vacf=None, profile=None, sweep=None, description=None)
+/// Simulation(*, allow_inconsistent=False, scene=None, scheme=None, dt=None, n=None, density=None, box=None, a=None, gamma=None, kbt=None, mass=None, weight_exponent=None, seed=None, threads=None, skin=None, shear_rate=None, body_force=None, walls=None, init=None, init_reset=None, trajectory=None, time=None, average_fraction=None, sample_interval=None, runs=None, energy_balance=None, like_neighbours=None, species=None, pairs=None, bond_types=None, angle_types=None, molecules=None, rdf=None, vacf=None, profile=None, sweep=None, description=None)
 /// --
 ///
 /// The initial state of a scene (uniform positions, Maxwell velocities, as the first run of
@@ -79,21 +80,12 @@ impl Snapshot {
 }
 
 /// `rows` as an (N, 3) array.
-fn array<'py>(py: Python<'py>, rows: Vec<[f64; 3]>) -> Bound<'py, PyArray2<f64>> {
+fn array(py: Python<'_>, rows: Vec<Vec3>) -> Bound<'_, PyArray2<f64>> {
     let n = rows.len();
-    let flat: Vec<f64> = rows.into_iter().flatten().collect();
+    let flat: Vec<f64> = rows.iter().flat_map(|v| [v.x, v.y, v.z]).collect();
     Array2::from_shape_vec((n, 3), flat)
         .expect("n rows of 3")
         .into_pyarray(py)
-}
-
-/// `values` (in storage order) in the order of the particles' ids, each scaled by `scale(k)`.
-fn by_id(sys: &System, values: &[Vec3], scale: impl Fn(usize) -> f64) -> Vec<[f64; 3]> {
-    let mut out = vec![[0.0; 3]; values.len()];
-    for (k, &id) in sys.ids().iter().enumerate() {
-        out[id as usize] = (values[k] * scale(k)).into();
-    }
-    out
 }
 
 /// An (N, 3) array of floats from any array-like `value`, by particle id, as storage-ordered
@@ -160,7 +152,7 @@ enum Stopped {
 #[pymethods]
 impl Simulation {
     #[new]
-    #[pyo3(signature = (*, allow_inconsistent=false, **scene), text_signature = "(*, allow_inconsistent=False, scene=None, scheme=None, dt=None, n=None, density=None, box=None, a=None, gamma=None, kbt=None, mass=None, weight_exponent=None, seed=None, threads=None, skin=None, shear_rate=None, body_force=None, walls=None, init=None, init_reset=None, trajectory=None, time=None, average_fraction=None, sample_interval=None, runs=None, energy_balance=None, rdf=None, vacf=None, profile=None, sweep=None, description=None)")]
+    #[pyo3(signature = (*, allow_inconsistent=false, **scene), text_signature = "(*, allow_inconsistent=False, scene=None, scheme=None, dt=None, n=None, density=None, box=None, a=None, gamma=None, kbt=None, mass=None, weight_exponent=None, seed=None, threads=None, skin=None, shear_rate=None, body_force=None, walls=None, init=None, init_reset=None, trajectory=None, time=None, average_fraction=None, sample_interval=None, runs=None, energy_balance=None, like_neighbours=None, species=None, pairs=None, bond_types=None, angle_types=None, molecules=None, rdf=None, vacf=None, profile=None, sweep=None, description=None)")]
     fn new(allow_inconsistent: bool, scene: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
         let scene = scene_of(scene, &Keys::new())?;
         let run = &scene.run;
@@ -241,7 +233,7 @@ impl Simulation {
     #[getter]
     fn positions<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         let s = &self.system;
-        array(py, by_id(s, s.positions(), |_| 1.0))
+        array(py, by_id(s, s.positions()))
     }
 
     #[setter]
@@ -256,7 +248,10 @@ impl Simulation {
     #[getter]
     fn velocities<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         let s = &self.system;
-        array(py, by_id(s, s.momenta(), |k| 1.0 / s.masses()[k]))
+        let v: Vec<Vec3> = (s.momenta().iter().zip(s.masses()))
+            .map(|(&p, &m)| p * (1.0 / m))
+            .collect();
+        array(py, by_id(s, &v))
     }
 
     #[setter]
@@ -267,6 +262,70 @@ impl Simulation {
             *p = v * m;
         }
         Ok(())
+    }
+
+    /// The type of each particle, an (N,) int array, row i for particle i: an index into
+    /// `types`.
+    #[getter]
+    fn typeid<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
+        topology::typeid(py, &self.system)
+    }
+
+    /// The names of the particle types: the scene's species in their order, else A, B, ...
+    #[getter]
+    fn types(&self) -> Vec<String> {
+        (self.scene).type_names(self.system.params().types())
+    }
+
+    /// The mass of each particle, an (N,) array, row i for particle i.
+    #[getter]
+    fn masses<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        by_id(&self.system, self.system.masses()).into_pyarray(py)
+    }
+
+    /// The bonds, a (B, 2) int array of particle ids (0 rows without bonds).
+    #[getter]
+    fn bonds<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<i64>> {
+        topology::bonds(py, &self.system)
+    }
+
+    /// The type of each bond, a (B,) int array: an index into `bond_types`.
+    #[getter]
+    fn bond_typeid<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
+        topology::bonded_typeid(py, &self.system, false)
+    }
+
+    /// The names of the bond types: the scene's `[[bond_types]]`, else (a data file's) "1",
+    /// "2", ...
+    #[getter]
+    fn bond_types(&self) -> Vec<String> {
+        topology::bonded_type_names(&self.scene, &self.system, false)
+    }
+
+    /// The angles, an (A, 3) int array of particle ids (i, j, k), j the vertex.
+    #[getter]
+    fn angles<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<i64>> {
+        topology::angles(py, &self.system)
+    }
+
+    /// The type of each angle, an (A,) int array: an index into `angle_types`.
+    #[getter]
+    fn angle_typeid<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
+        topology::bonded_typeid(py, &self.system, true)
+    }
+
+    /// The names of the angle types: the scene's `[[angle_types]]`, else "1", "2", ...
+    #[getter]
+    fn angle_types(&self) -> Vec<String> {
+        topology::bonded_type_names(&self.scene, &self.system, true)
+    }
+
+    /// The linear chains the bonds make (molecules whose bonds form one open, unbranched
+    /// path; others are left out): a list of int arrays, each the particle ids along one
+    /// chain from its end with the smaller id. A scene's `[[molecules]]` are its chains.
+    #[getter]
+    fn chains<'py>(&self, py: Python<'py>) -> Vec<Bound<'py, PyArray1<i64>>> {
+        topology::chains(py, &self.system)
     }
 
     /// Steps done (counted on from an `init` frame's step unless `init_reset`).
