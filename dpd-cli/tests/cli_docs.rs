@@ -281,8 +281,21 @@ fn outputs() -> BTreeMap<&'static str, Vec<Value>> {
              B-B = {{ a = 25.0 }}\nA-B = {{ a = 40.0 }}\n"
         ),
     );
+    let melt = write(
+        d,
+        "melt.toml",
+        &format!(
+            "{tiny}[[bond_types]]\nname = \"h\"\nstyle = \"harmonic\"\nk = 2.0\nr0 = 0.5\n\
+             [[bond_types]]\nname = \"f\"\nstyle = \"fene\"\nk = 30.0\nr_max = 1.5\n\
+             [[angle_types]]\nname = \"c\"\nstyle = \"cosine_squared\"\nk = 2.0\n\
+             theta0 = 120.0\n\
+             [[molecules]]\nlength = 4\ncount = 5\nbeads = \"A\"\nbond = \"h\"\n\
+             angle = \"c\"\nstep = 0.6\n\
+             [[molecules]]\nlength = 5\nfraction = 0.5\nbond = \"f\"\n"
+        ),
+    );
     let run = |scene: &str| json(&dpd(d, &["run", "--scene", scene, "--json"]));
-    let runs = [run(&observed), run(&channel), run(&mixture)];
+    let runs = [run(&observed), run(&channel), run(&mixture), run(&melt)];
     let sweep_out = dpd(d, &["sweep", "--scene", &sheared, "--json", "s.json"]);
     assert!(sweep_out.status.success(), "{sweep_out:?}");
     let sweep: Value = serde_json::from_slice(&std::fs::read(d.join("s.json")).unwrap()).unwrap();

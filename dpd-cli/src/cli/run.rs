@@ -196,6 +196,17 @@ fn print_table(r: &RunReport) {
         }
     }
     for run in r.results {
+        if let Some(c) = &run.chains {
+            let shown = |x: Option<f64>| x.map_or("none".into(), |x| format!("{x:.4}"));
+            outln!(
+                "seed {}: mean bond length {:.4}; {} linear chains: <R_ee^2> {}, <R_g^2> {}",
+                run.seed,
+                c.bond_length,
+                c.chains,
+                shown(c.end_to_end_squared),
+                shown(c.gyration_squared)
+            );
+        }
         if let Some(like) = &run.like_neighbours {
             let shown = |f: &Option<f64>| f.map_or("none".into(), |f| format!("{f:.4}"));
             let each: Vec<String> = like
