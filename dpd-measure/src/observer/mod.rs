@@ -45,6 +45,9 @@ mod vacf;
 mod viscosity;
 
 pub use interface::{Boxed, End, Observer, Setup};
+pub use neighbours::LikeNeighbours;
+pub use pair_rdf::PairRdf;
+pub use species_profile::SpeciesProfile;
 pub use trajectory::Recorder;
 
 use dpd_core::{ParamError, System};

@@ -12,7 +12,8 @@ use crate::result::RunResult;
 use dpd_core::{ParamError, System};
 use std::collections::BTreeMap;
 
-struct LikeNeighbours {
+/// Like and all neighbours of each type; also used by the Python module's `measure`.
+pub struct LikeNeighbours {
     pairs: TypedPairs,
     /// Sums over the samples, per species: neighbours of its particles of the same species,
     /// and all neighbours of its particles.
@@ -29,18 +30,24 @@ pub(super) fn new<'a>(
     if !setup.scene.observe.like_neighbours {
         return Ok(None);
     }
-    let types = sys.params().types();
-    Ok(Some(Box::new(LikeNeighbours {
-        pairs: TypedPairs::default(),
-        like: vec![0; types],
-        all: vec![0; types],
-        names: setup.scene.type_names(types),
-        samples: 0,
-    })))
+    let names = setup.scene.type_names(sys.params().types());
+    Ok(Some(Box::new(LikeNeighbours::new(names))))
 }
 
 impl LikeNeighbours {
-    fn record(&mut self, sys: &System) {
+    /// Counts of the types named `names`.
+    pub fn new(names: Vec<String>) -> LikeNeighbours {
+        LikeNeighbours {
+            pairs: TypedPairs::default(),
+            like: vec![0; names.len()],
+            all: vec![0; names.len()],
+            names,
+            samples: 0,
+        }
+    }
+
+    /// Add the neighbours within r_c of `sys`'s state.
+    pub fn record(&mut self, sys: &System) {
         let (like, all) = (&mut self.like, &mut self.all);
         self.pairs.visit(sys, sys.params().rc(), |i, j, _| {
             all[i] += 1;
@@ -50,6 +57,12 @@ impl LikeNeighbours {
             }
         });
         self.samples += 1;
+    }
+
+    /// Per type, the neighbours of its particles of the same type and all their neighbours,
+    /// summed over the samples so far.
+    pub fn sums(&self) -> (&[u64], &[u64]) {
+        (&self.like, &self.all)
     }
 
     /// The fraction per species, keyed by name (`None` for a species without neighbours).

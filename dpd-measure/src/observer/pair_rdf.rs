@@ -12,7 +12,8 @@ use crate::result::RunResult;
 use dpd_core::{ParamError, System};
 use std::collections::BTreeMap;
 
-struct PairRdf {
+/// The g_ij(r) of every pair of types; also used by the Python module's `measure`.
+pub struct PairRdf {
     pairs: TypedPairs,
     r_max: f64,
     bins: usize,
@@ -33,22 +34,33 @@ pub(super) fn new<'a>(
     let (Some(spec), Some(_)) = (&setup.scene.observe.rdf, &setup.scene.species.species) else {
         return Ok(None);
     };
-    let types = sys.params().types();
+    let names = setup.scene.type_names(sys.params().types());
     Ok(Some(Box::new(PairRdf {
-        pairs: TypedPairs::default(),
-        r_max: spec.r_max,
-        bins: spec.bins,
-        hist: vec![0; types * types * spec.bins],
-        counts: type_counts(sys, types),
-        volume: sys.boundary().volume(),
-        names: setup.scene.type_names(types),
-        samples: 0,
         stride: setup.scene.rdf_stride(setup.dt),
+        ..PairRdf::new(sys, spec.r_max, spec.bins, names)
     })))
 }
 
 impl PairRdf {
-    fn record(&mut self, sys: &System) {
+    /// Histograms of `bins` bins up to `r_max` of the pairs of `sys`'s types, named `names`,
+    /// recorded at every sample.
+    pub fn new(sys: &System, r_max: f64, bins: usize, names: Vec<String>) -> PairRdf {
+        let types = names.len();
+        PairRdf {
+            pairs: TypedPairs::default(),
+            r_max,
+            bins,
+            hist: vec![0; types * types * bins],
+            counts: type_counts(sys, types),
+            volume: sys.boundary().volume(),
+            names,
+            samples: 0,
+            stride: 1,
+        }
+    }
+
+    /// Add the pairs of `sys`'s state.
+    pub fn record(&mut self, sys: &System) {
         let (types, bins) = (self.counts.len(), self.bins);
         let scale = bins as f64 / self.r_max;
         let hist = &mut self.hist;
@@ -59,7 +71,7 @@ impl PairRdf {
     }
 
     /// `g_ij` per pair `i <= j`, keyed `"A-B"`: `[bin centre, g]` per bin.
-    fn g(&self) -> BTreeMap<String, Vec<[f64; 2]>> {
+    pub fn g(&self) -> BTreeMap<String, Vec<[f64; 2]>> {
         let (types, bins) = (self.counts.len(), self.bins);
         let dr = self.r_max / bins as f64;
         let mut out = BTreeMap::new();
@@ -117,17 +129,7 @@ mod tests {
         let sys = scene.system(0.05, 2).unwrap();
         let mut total = Rdf::new(&sys, 3.0, 30).unwrap();
         total.record(&sys);
-        let mut pairs = PairRdf {
-            pairs: TypedPairs::default(),
-            r_max: 3.0,
-            bins: 30,
-            hist: vec![0; 4 * 30],
-            counts: type_counts(&sys, 2),
-            volume: sys.boundary().volume(),
-            names: scene.type_names(2),
-            samples: 0,
-            stride: 1,
-        };
+        let mut pairs = PairRdf::new(&sys, 3.0, 30, scene.type_names(2));
         pairs.record(&sys);
         let g = pairs.g();
         let x = [0.3, 0.7];

@@ -6,7 +6,8 @@ use crate::result::RunResult;
 use dpd_core::{ParamError, System};
 use std::collections::BTreeMap;
 
-struct SpeciesProfile {
+/// Slab densities of each type; also used by the Python module's `measure`.
+pub struct SpeciesProfile {
     axis: usize,
     length: f64,
     slab_volume: f64,
@@ -35,7 +36,7 @@ pub(super) fn new<'a>(
 
 impl SpeciesProfile {
     /// `bins` equal slabs across `axis` (checked by the scene) of `sys`'s box.
-    fn new(sys: &System, axis: usize, bins: usize, names: Vec<String>) -> SpeciesProfile {
+    pub fn new(sys: &System, axis: usize, bins: usize, names: Vec<String>) -> SpeciesProfile {
         let bx = sys.boundary();
         SpeciesProfile {
             axis,
@@ -49,7 +50,7 @@ impl SpeciesProfile {
     }
 
     /// Add the mobile particles (frozen wall particles are left out) of the current state.
-    fn record(&mut self, sys: &System) {
+    pub fn record(&mut self, sys: &System) {
         let scale = self.bins as f64 / self.length;
         let frozen = sys.frozen();
         for (k, (q, &t)) in sys.positions().iter().zip(sys.kinds()).enumerate() {
@@ -63,7 +64,7 @@ impl SpeciesProfile {
     }
 
     /// Per species, keyed by name: `[slab centre, number density]` per slab.
-    fn rows(&self) -> BTreeMap<String, Vec<[f64; 2]>> {
+    pub fn rows(&self) -> BTreeMap<String, Vec<[f64; 2]>> {
         let width = self.length / self.bins as f64;
         let per = self.samples.max(1) as f64 * self.slab_volume;
         let slabs = self.counts.chunks(self.bins);
