@@ -136,6 +136,24 @@ class Measurement:
 
     @property
     def diffusion(self) -> float | None: ...
+    @property
+    def pair_rdf(self) -> dict[str, npt.NDArray[np.float64]] | None:
+        """With `rdf` and several types: rows (r, g_ij(r)) per pair of types, keyed "A-B"."""
+
+    @property
+    def like_neighbours(self) -> dict[str, Estimate | None] | None:
+        """Per type, the fraction of its neighbours within r_c of the same type."""
+
+    @property
+    def species_profile(self) -> dict[str, npt.NDArray[np.float64]] | None:
+        """Per type, rows (slab centre, number density)."""
+
+    @property
+    def bond_length(self) -> Estimate | None: ...
+    @property
+    def end_to_end_squared(self) -> Estimate | None: ...
+    @property
+    def gyration_squared(self) -> Estimate | None: ...
 
 class Simulation:
     """One scene's system stepped by one scheme."""
@@ -158,9 +176,13 @@ class Simulation:
         blocks: int = 10,
         rdf: bool | _Table | None = None,
         vacf: bool | _Table | None = None,
+        profile: bool | _Table | None = None,
+        like_neighbours: bool | None = None,
+        accumulate: bool = False,
     ) -> Measurement:
         """Run `steps` steps sampling every `every` time units: means with standard errors,
-        g(r) and the velocity autocorrelation."""
+        g(r), the velocity autocorrelation, per-type and chain observables; with
+        `accumulate`, over the previous call's samples too."""
 
     @property
     def positions(self) -> npt.NDArray[np.float64]:

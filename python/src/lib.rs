@@ -9,6 +9,7 @@ mod keys;
 mod measure;
 mod simulation;
 mod topology;
+mod typed;
 mod wait;
 
 use dpd_ir::lang::split_schemes;

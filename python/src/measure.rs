@@ -1,17 +1,21 @@
-//! `Simulation.measure`: the averages of a stretch of run with their standard errors, and g(r)
-//! and the velocity autocorrelation of the same samples, as typed result objects.
+//! `Simulation.measure`: the averages of a stretch of run with their standard errors, g(r) and
+//! the velocity autocorrelation of the same samples, and in mixtures and bonded systems the
+//! observables of each type and of the chains, as typed result objects.
 
 use crate::invalid;
+use crate::typed::{ChainSeries, LikeSeries};
 use dpd_core::observe::{block_ratio_error, thermo, Rdf, Thermo, Vacf};
 use dpd_core::{ParamError, System};
-use dpd_measure::scene::{Observe, RdfSpec, VacfSpec};
+use dpd_measure::observer::{PairRdf, SpeciesProfile};
+use dpd_measure::scene::{Observe, ProfileSpec, RdfSpec, VacfSpec};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray2};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
-use pyo3::types::PyBool;
+use pyo3::types::{PyBool, PyDict};
 use pythonize::depythonize;
 use serde::de::DeserializeOwned;
+use std::collections::BTreeMap;
 
 /// A mean over a run's samples and its standard error.
 #[pyclass(module = "dpd", frozen, get_all)]
@@ -59,6 +63,20 @@ pub struct Measurement {
     pub vacf: Option<Py<PyArray2<f64>>>,
     /// With `vacf`: D = (1/3) integral of C(t) dt (trapezoid rule).
     pub diffusion: Option<f64>,
+    /// With `rdf` and more than one type: g_ij(r) of each pair of types i <= j, keyed "A-B",
+    /// as rows (r, g_ij); with the composition x_i, sum_ij x_i x_j g_ij = g.
+    pub pair_rdf: Option<Py<PyDict>>,
+    /// With `like_neighbours`: per type, the fraction of its particles' neighbours within r_c
+    /// that are of the same type (None for a type without neighbours).
+    pub like_neighbours: Option<BTreeMap<String, Option<Estimate>>>,
+    /// With `profile`: per type, rows (slab centre, number density) across the profile's axis
+    /// (mobile particles only).
+    pub species_profile: Option<Py<PyDict>>,
+    /// With bonds: the mean bond length.
+    pub bond_length: Option<Estimate>,
+    /// With linear chains: the mean squared end-to-end distance and radius of gyration.
+    pub end_to_end_squared: Option<Estimate>,
+    pub gyration_squared: Option<Estimate>,
 }
 
 #[pymethods]
@@ -82,18 +100,37 @@ impl Measurement {
 pub struct Samples {
     thermo: Vec<Thermo>,
     rdf: Option<Rdf>,
+    pair_rdf: Option<PairRdf>,
     vacf: Option<Vacf>,
+    like: Option<LikeSeries>,
+    profile: Option<SpeciesProfile>,
+    chains: Option<ChainSeries>,
     interval: f64,
+    /// Steps between samples.
+    pub every: u64,
 }
 
 impl Samples {
-    /// Samples every `interval` time units of `sys`, with the tables of `observe`.
-    pub fn new(sys: &System, observe: &Observe, interval: f64) -> Result<Samples, ParamError> {
+    /// Samples of `sys` every `every` steps, with the tables of `observe`; the types are
+    /// named `names`.
+    pub fn new(
+        sys: &System,
+        observe: &Observe,
+        every: u64,
+        names: Vec<String>,
+    ) -> Result<Samples, ParamError> {
         observe.validate(sys.boundary().min_length())?;
+        let interval = every as f64 * sys.dt();
         let rdf = match &observe.rdf {
             Some(r) => Some(Rdf::new(sys, r.r_max, r.bins)?),
             None => None,
         };
+        let pair_rdf = match &observe.rdf {
+            Some(r) if names.len() > 1 => Some(PairRdf::new(sys, r.r_max, r.bins, names.clone())),
+            _ => None,
+        };
+        let profile = (observe.profile.as_ref())
+            .map(|p| SpeciesProfile::new(sys, p.axis, p.bins, names.clone()));
         let vacf = match &observe.vacf {
             Some(v) => {
                 let lags = ((v.max_lag / interval).round() as usize).max(1);
@@ -104,8 +141,13 @@ impl Samples {
         Ok(Samples {
             thermo: Vec::new(),
             rdf,
+            pair_rdf,
             vacf,
+            like: observe.like_neighbours.then(|| LikeSeries::new(names)),
+            profile,
+            chains: ChainSeries::new(sys),
             interval,
+            every,
         })
     }
 
@@ -114,16 +156,29 @@ impl Samples {
         if let Some(rdf) = &mut self.rdf {
             rdf.record(sys);
         }
+        if let Some(pair_rdf) = &mut self.pair_rdf {
+            pair_rdf.record(sys);
+        }
         if let Some(vacf) = &mut self.vacf {
             vacf.record(sys);
         }
+        if let Some(like) = &mut self.like {
+            like.record(sys);
+        }
+        if let Some(profile) = &mut self.profile {
+            profile.record(sys);
+        }
+        if let Some(chains) = &mut self.chains {
+            chains.record(sys);
+        }
     }
 
-    /// The measurement, with standard errors from `blocks` blocks.
-    pub fn finish(self, py: Python<'_>, blocks: usize) -> Measurement {
+    /// The measurement of all samples so far, with standard errors from `blocks` blocks.
+    pub fn finish(&self, py: Python<'_>, blocks: usize) -> PyResult<Measurement> {
         let series = |f: fn(&Thermo) -> f64| self.thermo.iter().map(f).collect::<Vec<f64>>();
         let ones = vec![1.0; self.thermo.len()];
-        let plain = |f: fn(&Thermo) -> f64| ratio(&series(f), &ones, blocks);
+        let mean = |values: &[f64]| ratio(values, &ones[..values.len()], blocks);
+        let plain = |f: fn(&Thermo) -> f64| mean(&series(f));
         let rows = |rows: Vec<[f64; 2]>| {
             let flat: Vec<f64> = rows.iter().flatten().copied().collect();
             Array2::from_shape_vec((rows.len(), 2), flat)
@@ -131,8 +186,18 @@ impl Samples {
                 .into_pyarray(py)
                 .unbind()
         };
+        let dict = |map: BTreeMap<String, Vec<[f64; 2]>>| -> PyResult<Py<PyDict>> {
+            let d = PyDict::new(py);
+            for (name, r) in map {
+                d.set_item(name, rows(r))?;
+            }
+            Ok(d.unbind())
+        };
+        let chains = self.chains.as_ref();
+        let chain_mean = |v: &[f64]| (!v.is_empty()).then(|| mean(v));
         let interval = self.interval;
-        Measurement {
+        let samples = !self.thermo.is_empty();
+        Ok(Measurement {
             samples: self.thermo.len() as u64,
             interval,
             blocks,
@@ -153,13 +218,25 @@ impl Samples {
                 rows(c.map(|(k, c)| [k as f64 * interval, c]).collect())
             }),
             diffusion: self.vacf.as_ref().map(|v| v.diffusion(interval)),
-        }
+            pair_rdf: (self.pair_rdf.as_ref())
+                .filter(|_| samples)
+                .map(|p| dict(p.g()))
+                .transpose()?,
+            like_neighbours: self.like.as_ref().map(|l| l.fractions(blocks)),
+            species_profile: (self.profile.as_ref())
+                .filter(|_| samples)
+                .map(|p| dict(p.rows()))
+                .transpose()?,
+            bond_length: chains.and_then(|c| chain_mean(&c.bond_length)),
+            end_to_end_squared: chains.and_then(|c| chain_mean(&c.end_to_end)),
+            gyration_squared: chains.and_then(|c| chain_mean(&c.gyration)),
+        })
     }
 }
 
 /// `sum(numerator) / sum(denominator)` over all the samples, with the standard error of
 /// [`block_ratio_error`].
-fn ratio(numerator: &[f64], denominator: &[f64], blocks: usize) -> Estimate {
+pub fn ratio(numerator: &[f64], denominator: &[f64], blocks: usize) -> Estimate {
     Estimate {
         mean: numerator.iter().sum::<f64>() / denominator.iter().sum::<f64>(),
         stderr: block_ratio_error(numerator, denominator, blocks),
@@ -185,15 +262,20 @@ pub fn table<T: DeserializeOwned + Default + Clone>(
         .map_err(|e| PyTypeError::new_err(format!("{name}: {e}")))
 }
 
-/// The tables of a measurement: `rdf` and `vacf` as [`table`] reads them over the scene's.
+/// The tables of a measurement: `rdf`, `vacf` and `profile` as [`table`] reads them over the
+/// scene's, `like_neighbours` the scene's unless given.
 pub fn observe(
     scene: &Observe,
     rdf: Option<&Bound<'_, PyAny>>,
     vacf: Option<&Bound<'_, PyAny>>,
+    profile: Option<&Bound<'_, PyAny>>,
+    like_neighbours: Option<bool>,
 ) -> PyResult<Observe> {
     Ok(Observe {
         rdf: table::<RdfSpec>("rdf", rdf, scene.rdf.as_ref())?,
         vacf: table::<VacfSpec>("vacf", vacf, scene.vacf.as_ref())?,
+        profile: table::<ProfileSpec>("profile", profile, scene.profile.as_ref())?,
+        like_neighbours: like_neighbours.unwrap_or(scene.like_neighbours),
         ..Observe::default()
     })
 }

@@ -48,6 +48,9 @@ pub struct Simulation {
     /// at every change of dt so that it runs on continuously.
     origin: Origin,
     recorder: Option<Recorder>,
+    /// The samples of the last `measure` call, for `measure(accumulate=True)`; dropped when
+    /// dt, the state or the particles change.
+    samples: Option<Samples>,
     /// Scheme strings whose coefficients do not sum to 1 are accepted.
     allow_inconsistent: bool,
 }
@@ -184,6 +187,7 @@ impl Simulation {
             pool,
             origin,
             recorder,
+            samples: None,
             allow_inconsistent,
         })
     }
@@ -198,17 +202,27 @@ impl Simulation {
         self.advance(py, steps, None)
     }
 
-    /// measure(steps, *, every=None, blocks=10, rdf=None, vacf=None)
+    /// measure(steps, *, every=None, blocks=10, rdf=None, vacf=None, profile=None, like_neighbours=None, accumulate=False)
     /// --
     ///
     /// Run `steps` steps as `run` does, sampling the state every `every` time units (default:
     /// the scene's sample_interval; rounded to whole steps), and return a Measurement: the
     /// means of k_B T_K, k_B T_C, the potential energy and the pressure with standard errors
-    /// from `blocks` blocks of consecutive samples, and, with `rdf` or `vacf`, g(r) and the
-    /// velocity autocorrelation of the same samples. `rdf` and `vacf` are the scene's tables
-    /// of that name (None: the scene's, if it has one; True: on, with the scene's keys or the
-    /// defaults; a dict: on, with those keys; False: off). The state before is not sampled.
-    #[pyo3(signature = (steps, *, every=None, blocks=10, rdf=None, vacf=None))]
+    /// from `blocks` blocks of consecutive samples; with `rdf` or `vacf`, g(r) (and with
+    /// several types g_ij(r)) and the velocity autocorrelation of the same samples; with
+    /// `profile`, each type's slab densities; with `like_neighbours`, each type's fraction of
+    /// like neighbours; with bonds, the mean bond length and the chains' <R_ee^2> and <R_g^2>.
+    /// `rdf`, `vacf` and `profile` are the scene's tables of that name (None: the scene's, if
+    /// it has one; True: on, with the scene's keys or the defaults; a dict: on, with those
+    /// keys; False: off). The state before is not sampled. `accumulate=True` goes on with the
+    /// samples of the previous measure call (its every and tables, which it then refuses) and
+    /// returns the measurement of all of them, a running average; changing dt, the state or
+    /// the particles between the calls ends the series.
+    #[pyo3(signature = (
+        steps, *, every=None, blocks=10, rdf=None, vacf=None, profile=None,
+        like_neighbours=None, accumulate=false
+    ))]
+    #[allow(clippy::too_many_arguments)]
     fn measure(
         &mut self,
         py: Python<'_>,
@@ -217,14 +231,49 @@ impl Simulation {
         blocks: usize,
         rdf: Option<Bound<'_, PyAny>>,
         vacf: Option<Bound<'_, PyAny>>,
+        profile: Option<Bound<'_, PyAny>>,
+        like_neighbours: Option<bool>,
+        accumulate: bool,
     ) -> PyResult<Measurement> {
-        let dt = self.system.dt();
-        let every = sample_steps(every.unwrap_or(self.scene.run.sample_interval), dt)?;
-        let observe = measure::observe(&self.scene.observe, rdf.as_ref(), vacf.as_ref())?;
+        let given = [
+            every.is_some(),
+            rdf.is_some(),
+            vacf.is_some(),
+            profile.is_some(),
+        ];
+        if accumulate && (given.into_iter().any(|g| g) || like_neighbours.is_some()) {
+            return Err(PyTypeError::new_err(
+                "measure(accumulate=True) goes on with the previous call's every, rdf, vacf, \
+                 profile and like_neighbours: give none of them",
+            ));
+        }
         let mut samples =
-            Samples::new(&self.system, &observe, every as f64 * dt).map_err(invalid)?;
-        self.advance(py, steps, Some((every, &mut |sys| samples.record(sys))))?;
-        Ok(samples.finish(py, blocks))
+            match self.samples.take() {
+                Some(samples) if accumulate => samples,
+                None if accumulate => return Err(invalid(
+                    "measure(accumulate=True): no samples to go on from (no measure call since \
+                     the simulation was made or its dt, state or particles changed)",
+                )),
+                _ => {
+                    let dt = self.system.dt();
+                    let every = sample_steps(every.unwrap_or(self.scene.run.sample_interval), dt)?;
+                    let (tables, names) = (&self.scene.observe, self.types());
+                    let observe = measure::observe(
+                        tables,
+                        rdf.as_ref(),
+                        vacf.as_ref(),
+                        profile.as_ref(),
+                        like_neighbours,
+                    )?;
+                    Samples::new(&self.system, &observe, every, names).map_err(invalid)?
+                }
+            };
+        let every = samples.every;
+        let outcome = self.advance(py, steps, Some((every, &mut |sys| samples.record(sys))));
+        let measurement = samples.finish(py, blocks);
+        self.samples = Some(samples);
+        outcome?;
+        measurement
     }
 
     /// Positions, an (N, 3) array wrapped into the box, row i for particle i (the order in
@@ -240,6 +289,7 @@ impl Simulation {
     fn set_positions(&mut self, value: &Bound<'_, PyAny>) -> PyResult<()> {
         self.no_trajectory("set positions")?;
         let q = rows_by_id(&self.system, "positions", value)?;
+        self.samples = None;
         self.system.set_positions(&q).map_err(invalid)
     }
 
@@ -257,6 +307,7 @@ impl Simulation {
     #[setter]
     fn set_velocities(&mut self, value: &Bound<'_, PyAny>) -> PyResult<()> {
         let v = rows_by_id(&self.system, "velocities", value)?;
+        self.samples = None;
         let masses = self.system.masses().to_vec();
         for ((p, v), m) in self.system.momenta_mut().iter_mut().zip(v).zip(masses) {
             *p = v * m;
@@ -352,6 +403,7 @@ impl Simulation {
         self.no_trajectory("change dt")?;
         let (old, steps) = (self.system.dt(), self.system.step() as f64);
         self.system.set_dt(dt).map_err(invalid)?;
+        self.samples = None;
         self.origin.time += steps * (old - dt);
         self.scene.run.dt = dt;
         Ok(())
@@ -424,6 +476,7 @@ impl Simulation {
         self.no_trajectory("restore a snapshot")?;
         self.scheme = scheme_of(&snapshot.scheme, true, &snapshot.system)?;
         self.system = snapshot.system.clone();
+        self.samples = None;
         self.origin = snapshot.origin.clone();
         self.scene.run.scheme = snapshot.scheme.clone();
         self.scene.run.dt = self.system.dt();
@@ -453,6 +506,7 @@ impl Simulation {
         let (system, name) = System::load_checkpoint(&path).map_err(checkpoint_error)?;
         self.scheme = scheme_of(&name, true, &system)?;
         self.system = system;
+        self.samples = None;
         self.origin = Origin::default();
         self.scene.run.scheme = name;
         self.scene.run.dt = self.system.dt();
