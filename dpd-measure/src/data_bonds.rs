@@ -126,8 +126,9 @@ fn angle_style(name: &str, c: &[f64]) -> Result<AngleStyle, String> {
 }
 
 /// Write `topology` into `data` (whose atoms are the particles, atom id = index + 1): bond and
-/// angle types, coefficients and sections, atom style bond with each atom's molecule (the
-/// bonded clusters numbered from 1 by their smallest id, 0 for an atom without bonds). The
+/// angle types, coefficients and sections, atom style bond (molecular with angles) with each
+/// atom's molecule (the bonded clusters numbered from 1 by their smallest id, 0 for an atom
+/// without bonds). The
 /// error says which styles a file cannot hold together.
 pub fn write_topology(topology: &Topology, data: &mut DataFile) -> Result<(), String> {
     let bond_types = topology.bond_types();
@@ -158,7 +159,11 @@ pub fn write_topology(topology: &Topology, data: &mut DataFile) -> Result<(), St
         })
         .collect();
     let molecules = molecules(topology);
-    data.atom_style = lammps_data::AtomStyle::Bond;
+    // LAMMPS's atom style bond holds no angles; molecular has the same columns and holds both.
+    data.atom_style = match data.angles.is_empty() {
+        true => lammps_data::AtomStyle::Bond,
+        false => lammps_data::AtomStyle::Molecular,
+    };
     for atom in &mut data.atoms {
         atom.molecule = Some(molecules[(atom.id - 1) as usize]);
     }

@@ -24,8 +24,8 @@ fn written(scene: &Scene) -> String {
 
 /// A melt with two bond types, an angle type and solvent written as a data file starts again
 /// with the same topology (bonds and angles by id; coefficients exactly, theta0 through
-/// degrees to rounding) and the same positions; the file has atom style bond with one
-/// molecule per chain and 0 for the solvent.
+/// degrees to rounding) and the same positions; the file has atom style molecular (bond holds
+/// no angles) with one molecule per chain and 0 for the solvent.
 #[test]
 fn bonds_and_angles_go_through_a_data_file() {
     let scene = Scene::from_toml(&format!("{SPECIES}{CHAINS}"), "t").unwrap();
@@ -40,6 +40,7 @@ fn bonds_and_angles_go_through_a_data_file() {
         text.contains("Angle Coeffs # cosine/squared\n\n1 3 110"),
         "{text}"
     );
+    assert!(text.contains("Atoms # molecular"), "{text}");
     let data = DataFile::parse(&text).unwrap();
     let mol = |id: u64| data.atoms.iter().find(|a| a.id == id).unwrap().molecule;
     assert_eq!(
