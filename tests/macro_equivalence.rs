@@ -126,24 +126,8 @@ fn pair_groups_run_bitwise_as_the_ungrouped_scheme() {
 /// compiler, and so do ABOBA and velocity Verlet, which apply all forces together.
 #[test]
 fn bonded_melt_runs_the_same_from_the_macro_and_the_compiler() {
-    use dpd::bonded::{AngleStyle, BondStyle};
     fn melt() -> System {
-        let bonds = [
-            BondStyle::Harmonic { k: 50.0, r0: 0.7 },
-            BondStyle::Fene {
-                k: 30.0,
-                r_max: 1.5,
-            },
-        ];
-        let angles = [
-            AngleStyle::Cosine { k: 2.0 },
-            AngleStyle::CosineSquared {
-                k: 5.0,
-                theta0: 2.5,
-            },
-        ];
-        let params = dpd::Params::builder();
-        common::chain_melt(50, 6, params, &bonds, &angles, 0.7, SEED)
+        common::melt(50, 6, dpd::Params::builder(), SEED)
             .dt(DT)
             .build()
             .unwrap()

@@ -40,6 +40,38 @@ struct Bend {
     c: f64,
     dc_di: Vec3,
     dc_dk: Vec3,
+    /// `|a|^2`, `|b|^2`.
+    aa: f64,
+    bb: f64,
+}
+
+impl Bend {
+    /// `sum_p |grad_p cos theta|^2` over the three particles (`grad_j = -grad_i - grad_k`).
+    fn gradient_squared(&self) -> f64 {
+        let (gi, gk) = (self.dc_di, self.dc_dk);
+        gi.norm_squared() + gk.norm_squared() + (gi + gk).norm_squared()
+    }
+
+    /// `sum_p lap_p cos theta` over the three particles: `lap_i c = -2c / |a|^2` (`c` is the
+    /// cosine of the angle between `a` and a fixed direction), `lap_k c = -2c / |b|^2`, and
+    /// `lap_j c = lap_i c + lap_k c + 2 (1 + c^2) / (|a| |b|)` (the mixed second derivatives
+    /// `sum_x d^2 c / da_x db_x = (1 + c^2) / (|a| |b|)`).
+    fn laplacian(&self) -> f64 {
+        let c = self.c;
+        -4.0 * c / self.aa - 4.0 * c / self.bb + 2.0 * (1.0 + c * c) / (self.aa * self.bb).sqrt()
+    }
+}
+
+/// The bonded terms of the thermodynamic observables at one configuration.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct BondedSums {
+    /// Bonded potential energy.
+    pub energy: f64,
+    /// `sum_i lap_i` of the bonded energy (the configurational temperature's denominator).
+    pub laplacian: f64,
+    /// `sum_bonds q_ij . F_ij`, the bonds' share of the virial. Angles add nothing: their
+    /// energy depends on the angle alone, unchanged when every length is scaled.
+    pub virial: f64,
 }
 
 impl Bend {
@@ -52,6 +84,8 @@ impl Bend {
             c,
             dc_di: b * inv_ab - a * (c / aa),
             dc_dk: a * inv_ab - b * (c / bb),
+            aa,
+            bb,
         }
     }
 }
@@ -103,24 +137,27 @@ impl Located {
         })
     }
 
-    /// The bonded potential energy at `frame` (NaN with an overstretched FENE bond).
-    pub(crate) fn energy(&self, frame: Frame) -> f64 {
+    /// The bonded energy, Laplacian and virial at `frame` (NaN with an overstretched FENE
+    /// bond).
+    pub(crate) fn sums(&self, frame: Frame) -> BondedSums {
+        let mut sums = BondedSums::default();
         let styles = self.topology.bond_types();
-        let bonds: f64 = self
-            .bonds
-            .iter()
-            .map(|b| styles[b.kind as usize].energy(frame.delta(b.i, b.j).norm()))
-            .sum::<f64>();
+        for b in &self.bonds {
+            let style = &styles[b.kind as usize];
+            let r2 = frame.delta(b.i, b.j).norm_squared();
+            sums.energy += style.energy(r2.sqrt());
+            sums.laplacian += style.laplacian(r2);
+            sums.virial += style.force_over_r(r2) * r2;
+        }
         let styles = self.topology.angle_types();
-        let angles: f64 = self
-            .angles
-            .iter()
-            .map(|a| {
-                let bend = Bend::new(frame.delta(a.i, a.j), frame.delta(a.k, a.j));
-                styles[a.kind as usize].energy(bend.c)
-            })
-            .sum::<f64>();
-        bonds + angles
+        for a in &self.angles {
+            let style = &styles[a.kind as usize];
+            let bend = Bend::new(frame.delta(a.i, a.j), frame.delta(a.k, a.j));
+            sums.energy += style.energy(bend.c);
+            sums.laplacian += style.curvature(bend.c) * bend.gradient_squared()
+                + style.slope(bend.c) * bend.laplacian();
+        }
+        sums
     }
 }
 
@@ -128,6 +165,24 @@ impl Located {
 mod tests {
     use super::*;
     use crate::bonded::{Angle, AngleStyle, Bond, BondStyle, Topology};
+
+    fn frame<'a>(q: &'a [Vec3], bx: &'a PeriodicBox) -> Frame<'a> {
+        Frame { q, bx, shear: None }
+    }
+
+    /// The bonded energy with particle `i` moved by `h` along axis `c`.
+    fn energy_moved(
+        located: &Located,
+        bx: &PeriodicBox,
+        q: &[Vec3],
+        i: usize,
+        c: usize,
+        h: f64,
+    ) -> f64 {
+        let mut q = q.to_vec();
+        q[i][c] += h;
+        located.sums(frame(&q, bx)).energy
+    }
 
     /// Five beads straddling the corner of a small periodic box (so that bond vectors need
     /// their minimum image), every bond and angle style.
@@ -172,31 +227,60 @@ mod tests {
     #[test]
     fn forces_are_minus_the_gradient_of_the_energy() {
         let (located, bx, q) = set_up();
-        fn frame<'a>(q: &'a [Vec3], bx: &'a PeriodicBox) -> Frame<'a> {
-            Frame { q, bx, shear: None }
-        }
         let mut f = Vec::new();
         assert_eq!(located.forces(frame(&q, &bx), &mut f), None);
         let scale = f.iter().map(|f: &Vec3| f.amax()).fold(0.0, f64::max);
         assert!(scale > 1.0, "{scale}");
         let h = 1e-6;
-        for i in 0..q.len() {
-            for c in 0..3 {
-                let moved = |s: f64| {
-                    let mut q = q.clone();
-                    q[i][c] += s * h;
-                    located.energy(frame(&q, &bx))
-                };
+        for (i, f) in f.iter().enumerate() {
+            for (c, &f) in f.iter().enumerate() {
+                let moved = |s| energy_moved(&located, &bx, &q, i, c, s * h);
                 let numeric = -(moved(1.0) - moved(-1.0)) / (2.0 * h);
                 assert!(
-                    (numeric - f[i][c]).abs() < 1e-6 * scale,
-                    "particle {i} axis {c}: {numeric} vs {}",
-                    f[i][c]
+                    (numeric - f).abs() < 1e-6 * scale,
+                    "particle {i} axis {c}: {numeric} vs {f}"
                 );
             }
         }
         let total: Vec3 = f.iter().sum();
         assert!(total.amax() < 1e-13 * scale, "{total:?}");
+    }
+
+    /// The Laplacian sum is the trace of the energy's Hessian, by central second differences
+    /// with step 1e-4 (truncation ~1e-8 times the fourth derivative, rounding ~1e-16 U / h^2 ~
+    /// 1e-6): agreement to 1e-5 relative. The virial is `-dU/de` under the scaling of every
+    /// length by `1 + e` (box and positions), by central differences with step 1e-6.
+    #[test]
+    fn laplacian_and_virial_are_derivatives_of_the_energy() {
+        let (located, bx, q) = set_up();
+        let sums = located.sums(frame(&q, &bx));
+        let u = sums.energy;
+        let h = 1e-4;
+        let mut trace = 0.0;
+        for i in 0..q.len() {
+            for c in 0..3 {
+                let moved = |s| energy_moved(&located, &bx, &q, i, c, s * h);
+                trace += (moved(1.0) + moved(-1.0) - 2.0 * u) / (h * h);
+            }
+        }
+        assert!(
+            (trace - sums.laplacian).abs() < 1e-5 * sums.laplacian.abs(),
+            "{trace} vs {}",
+            sums.laplacian
+        );
+        let e = 1e-6;
+        let scaled = |s: f64| {
+            let f = 1.0 + s * e;
+            let bx = PeriodicBox::new((f * bx.lengths()).into()).unwrap();
+            let q: Vec<Vec3> = q.iter().map(|x| f * x).collect();
+            located.sums(frame(&q, &bx)).energy
+        };
+        let virial = -(scaled(1.0) - scaled(-1.0)) / (2.0 * e);
+        assert!(
+            (virial - sums.virial).abs() < 1e-6 * sums.virial.abs(),
+            "{virial} vs {}",
+            sums.virial
+        );
     }
 
     /// Known values: a harmonic bond K (r - r0)^2, FENE at half its reach, the angle energies
@@ -220,5 +304,8 @@ mod tests {
             theta0: std::f64::consts::PI,
         };
         assert!((squared.energy(c) - 7.0).abs() < 1e-15);
+        // Groot-Warren's spring (K = 2, r0 = 0): 2 * 3 * 2K = 24 for the two beads at any r.
+        let gw = BondStyle::Harmonic { k: 2.0, r0: 0.0 };
+        assert_eq!((gw.laplacian(0.0), gw.laplacian(0.49)), (24.0, 24.0));
     }
 }

@@ -17,7 +17,7 @@ mod forces;
 mod style;
 mod topology;
 
-pub(crate) use forces::{Frame, Overstretch};
+pub(crate) use forces::{BondedSums, Frame, Overstretch};
 pub use style::{AngleStyle, BondStyle};
 pub use topology::{Angle, Bond, Topology, TopologyBuilder};
 

@@ -104,6 +104,28 @@ impl BondStyle {
         }
     }
 
+    /// `E''(r)` at squared length `r2`. Harmonic: `2K`; FENE: `K / (1 - x) + 2K x / (1 - x)^2`
+    /// with `x = r^2 / R0^2`.
+    #[inline]
+    pub fn curvature(&self, r2: f64) -> f64 {
+        match *self {
+            BondStyle::Harmonic { k, .. } => 2.0 * k,
+            BondStyle::Fene { k, r_max } => {
+                let x = r2 / (r_max * r_max);
+                k / (1.0 - x) + 2.0 * k * x / ((1.0 - x) * (1.0 - x))
+            }
+        }
+    }
+
+    /// Both particles' Laplacians of the bond energy at squared length `r2`: in three
+    /// dimensions `lap E = E'' + 2 E' / r` for each, so `2 (E'' + 2 E' / r)`. Harmonic with `r0
+    /// = 0`: `2 * 3 * 2K = 12 K`; harmonic: `4K (1 + 2 (r - r0) / r)`; FENE: `2 (3K / (1 - x) +
+    /// 2K x / (1 - x)^2)`.
+    #[inline]
+    pub fn laplacian(&self, r2: f64) -> f64 {
+        2.0 * (self.curvature(r2) - 2.0 * self.force_over_r(r2))
+    }
+
     /// Whether a bond of squared length `r2` is beyond the style's reach: a FENE bond at or
     /// past `R0` (or a non-finite length).
     #[inline]
@@ -125,6 +147,15 @@ impl AngleStyle {
                 let d = c - theta0.cos();
                 k * d * d
             }
+        }
+    }
+
+    /// `d^2 E / d cos theta^2` at `c = cos theta`.
+    #[inline]
+    pub fn curvature(&self, _c: f64) -> f64 {
+        match *self {
+            AngleStyle::Cosine { .. } => 0.0,
+            AngleStyle::CosineSquared { k, .. } => 2.0 * k,
         }
     }
 

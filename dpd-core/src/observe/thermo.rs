@@ -6,13 +6,15 @@ use serde::Serialize;
 pub struct Thermo {
     /// `k_B T_K = sum p.p/m / (3 (N - 1))`.
     pub kinetic_temperature: f64,
-    /// Numerator of the configurational temperature, `sum_i |F^C_i|^2`.
+    /// Numerator of the configurational temperature, `sum_i |F^C_i|^2` (pair and bonded
+    /// forces).
     pub config_numerator: f64,
-    /// Denominator of the configurational temperature, `sum_i lap_i U`.
+    /// Denominator of the configurational temperature, `sum_i lap_i U` (pairs, bonds, angles).
     pub config_denominator: f64,
     /// Potential energy per particle, `U / N`, pairs and bonds.
     pub potential_energy: f64,
-    /// Virial pressure `N k_B T_K / V + sum_pairs q_ij . F^C_ij / (3 V)`.
+    /// Virial pressure `N k_B T_K / V + (sum_pairs q_ij . F^C_ij + sum_bonds q_ij . F_ij) / (3
+    /// V)` (angles, scale-free, add nothing).
     pub pressure: f64,
 }
 
@@ -46,12 +48,13 @@ pub fn kinetic_temperature(sys: &System) -> f64 {
 
 /// Measure [`Thermo`] at the current positions and momenta.
 ///
-/// The pair potential, its Laplacian and virial are those of [`crate::potential::Soft`].
+/// The pair potential, its Laplacian and virial are those of [`crate::potential::Soft`]; the
+/// bonded ones those of [`crate::bonded::BondStyle`] and [`crate::bonded::AngleStyle`].
 pub fn thermo(sys: &mut System) -> Thermo {
     let n = sys.len() as f64;
     let volume = sys.boundary().volume();
     let tk = kinetic_temperature(sys);
-    let bonded = sys.bonded_energy();
+    let bonded = sys.bonded_sums();
     let (u, lap, virial, numerator) = sys.with_forces(|sys, pairs, forces| {
         let (params, kind) = (sys.params(), sys.kinds());
         let (mut u, mut lap, mut virial) = (0.0, 0.0, 0.0);
@@ -61,14 +64,21 @@ pub fn thermo(sys: &mut System) -> Thermo {
             lap += soft.laplacian(pair.w);
             virial += soft.virial(pair.w);
         }
-        let numerator: f64 = forces.iter().map(|f| f.norm_squared()).sum();
+        let numerator: f64 = match sys.bonded_forces_now() {
+            None => forces.iter().map(|f| f.norm_squared()).sum(),
+            Some(bonded) => forces
+                .iter()
+                .zip(&bonded)
+                .map(|(f, b)| (f + b).norm_squared())
+                .sum(),
+        };
         (u, lap, virial, numerator)
     });
     Thermo {
         kinetic_temperature: tk,
         config_numerator: numerator,
-        config_denominator: lap,
-        potential_energy: (u + bonded) / n,
-        pressure: n * tk / volume + virial / (3.0 * volume),
+        config_denominator: lap + bonded.laplacian,
+        potential_energy: (u + bonded.energy) / n,
+        pressure: n * tk / volume + (virial + bonded.virial) / (3.0 * volume),
     }
 }

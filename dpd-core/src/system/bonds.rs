@@ -2,7 +2,7 @@
 //! with a topology.
 
 use super::System;
-use crate::bonded::{Frame, Overstretch};
+use crate::bonded::{BondedSums, Frame, Overstretch};
 use crate::boundary::{LeesEdwards, PeriodicBox};
 use crate::error::ParamError;
 use crate::stamp::Stamp;
@@ -37,9 +37,24 @@ impl System {
     /// The bonded potential energy at the current positions (0 without a topology; NaN with a
     /// FENE bond at or beyond `R0`).
     pub fn bonded_energy(&self) -> f64 {
+        self.bonded_sums().energy
+    }
+
+    /// The bonded energy, Laplacian and virial at the current positions (zeros without a
+    /// topology).
+    pub(crate) fn bonded_sums(&self) -> BondedSums {
         self.bonded
             .as_ref()
-            .map_or(0.0, |located| located.energy(self.frame()))
+            .map_or_else(BondedSums::default, |located| located.sums(self.frame()))
+    }
+
+    /// The bonded forces at the current positions, evaluated afresh and not cached (for
+    /// observables, which may run on a scratch copy), or `None` without a topology.
+    pub(crate) fn bonded_forces_now(&self) -> Option<Vec<Vec3>> {
+        let located = self.bonded.as_ref()?;
+        let mut forces = Vec::new();
+        located.forces(self.frame(), &mut forces);
+        Some(forces)
     }
 
     /// Why a step that found a bond overstretched is a blow-up, naming the bond and its ids.

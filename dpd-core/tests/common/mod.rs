@@ -5,7 +5,7 @@ use dpd_core::bonded::{Angle, AngleStyle, Bond, BondStyle, Topology};
 use dpd_core::flow::{bbk, drift, full_force, kick, ou, trotter};
 use dpd_core::init::{equilibrium_box, maxwell_momenta};
 use dpd_core::params::ParamsBuilder;
-use dpd_core::{AdvanceError, BlowUp, Params, Scheme, SweepOrder, System, Vec3};
+use dpd_core::{AdvanceError, BlowUp, Params, Scheme, SweepOrder, System, SystemBuilder, Vec3};
 
 /// A system of `n` unit-mass particles at `density` with the given parameters, Maxwell
 /// momenta and uniform positions.
@@ -36,7 +36,7 @@ pub fn chain_melt(
     angles: &[AngleStyle],
     step: f64,
     seed: u64,
-) -> dpd_core::SystemBuilder {
+) -> SystemBuilder {
     let n = chains * length;
     let base = equilibrium_box(params.build().unwrap(), n, 3.0, seed)
         .unwrap()
@@ -73,6 +73,30 @@ pub fn chain_melt(
         .momenta(base.momenta().to_vec())
         .seed(seed)
         .topology(t.build().unwrap())
+}
+
+/// The bond styles of the test melts: a stiff harmonic bond and a FENE bond, in turn.
+pub const MELT_BONDS: [BondStyle; 2] = [
+    BondStyle::Harmonic { k: 50.0, r0: 0.7 },
+    BondStyle::Fene {
+        k: 30.0,
+        r_max: 1.5,
+    },
+];
+
+/// The angle styles of the test melts: cosine and cosine/squared, in turn.
+pub const MELT_ANGLES: [AngleStyle; 2] = [
+    AngleStyle::Cosine { k: 2.0 },
+    AngleStyle::CosineSquared {
+        k: 5.0,
+        theta0: 2.5,
+    },
+];
+
+/// A melt of `chains` chains of `length` beads with [`MELT_BONDS`] and [`MELT_ANGLES`], steps
+/// of 0.7 (see [`chain_melt`]).
+pub fn melt(chains: usize, length: usize, params: ParamsBuilder, seed: u64) -> SystemBuilder {
+    chain_melt(chains, length, params, &MELT_BONDS, &MELT_ANGLES, 0.7, seed)
 }
 
 /// The standard box (gamma = 4.5, seed 3) with every particle at rest but the first, which
