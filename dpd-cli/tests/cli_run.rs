@@ -223,3 +223,46 @@ fn observables_are_switched_on_by_flags_as_by_tables() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--init"));
 }
+
+/// A melt runs a scheme with bonds on an inner step, prints its chains, writes its last state
+/// with its bonds, and the next run starts from that file with the same bonds (chains found
+/// again); `B[bond]` on a scene without bonds is refused, naming the group.
+#[test]
+fn a_melt_runs_an_mts_scheme_and_restarts_from_its_data_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let melt = write(
+        dir.path(),
+        "melt.toml",
+        &format!(
+            "{TINY}[[bond_types]]\nname = \"s\"\nstyle = \"harmonic\"\nk = 2.0\n\
+             [[molecules]]\nlength = 5\ncount = 12\nbond = \"s\"\n"
+        ),
+    );
+    let mts = "B[pair](1/2) (B[bond](1/4) A(1/2) B[bond](1/4))^2 O B[pair](1/2)";
+    let first = [
+        "run",
+        "--scene",
+        &melt,
+        "--scheme",
+        mts,
+        "--write-data",
+        "m.data",
+    ];
+    let out = dpd(dir.path(), &first);
+    assert!(out.status.success(), "{out:?}");
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("12 linear chains: <R_ee^2>"), "{text}");
+    let data = std::fs::read_to_string(dir.path().join("m.data")).unwrap();
+    assert!(data.contains("\n48 bonds\n") && data.contains("Bond Coeffs # harmonic\n\n1 2 0\n"));
+    let plain = write(dir.path(), "plain.toml", TINY);
+    let next = [
+        "run", "--scene", &plain, "--init", "m.data", "--scheme", mts, "--json",
+    ];
+    let v = json(&dpd(dir.path(), &next));
+    assert_eq!(v["results"][0]["chains"]["chains"], 12, "{v}");
+    let out = dpd(dir.path(), &["run", "--scene", &plain, "--scheme", mts]);
+    refused(
+        &out,
+        "it applies B[bond], the bonded forces (bonds and angles), which this system",
+    );
+}
