@@ -104,12 +104,6 @@ impl InitSpec {
                         format!("must be the scene's species, {names:?}, in their order"),
                     ));
                 }
-                if frame.bonds.is_some() {
-                    return Err(bad(format!(
-                        "frame {k} has bonds, whose coefficients a GSD file does not hold: \
-                         start a bonded system from a LAMMPS data file (write_data)"
-                    )));
-                }
                 let (repulsions, topology) = (None, None);
                 let start = Start {
                     frame,

@@ -238,27 +238,4 @@ mod tests {
         let t_c = logged(&mut sys);
         assert!(t_c > 0.5 && t_c < 2.0, "{t_c}");
     }
-
-    /// The frames of a bonded system carry its bonds by particle id (GSD `bonds/...`, read
-    /// back here), so that OVITO draws the chains.
-    #[test]
-    fn frames_carry_the_bonds() {
-        let text = "n = 60\n[[bond_types]]\nname = \"b\"\nstyle = \"harmonic\"\nk = 2.0\n\
-                    [[molecules]]\nlength = 4\ncount = 5\nbond = \"b\"\n";
-        let scene = Scene::from_toml(text, "t").unwrap();
-        let mut sys = scene.system(0.05, 3).unwrap();
-        let dir = tempfile::tempdir().unwrap();
-        let spec = TrajectorySpec {
-            file: dir.path().join("melt.gsd"),
-            every: 1.0,
-            fields: None,
-        };
-        let types = scene.type_names(1);
-        Recorder::start(&spec, 0.05, (3, 1), types, Origin::default(), &mut sys).unwrap();
-        let read = dpd_trajectory::gsd::GsdReader::open(&spec.file).unwrap();
-        let bonds = read.frame(0).unwrap().bonds.unwrap();
-        assert_eq!(bonds.types, ["1"]);
-        assert_eq!(bonds.typeid, [0; 15]);
-        assert_eq!(&bonds.group[..4], [[0, 1], [1, 2], [2, 3], [4, 5]]);
-    }
 }

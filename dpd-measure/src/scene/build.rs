@@ -9,6 +9,7 @@ use crate::start::{initial_state, InitSpec, Origin};
 use dpd_core::bonded::{Topology, TopologyBuilder};
 use dpd_core::init::{freeze_outside, maxwell_momenta, uniform_positions};
 use dpd_core::{ParamError, Params, System, Vec3};
+use dpd_trajectory::Frame;
 
 impl Scene {
     /// The initial state of run `seed` at time step `dt`: uniform positions, types by id in
@@ -39,7 +40,8 @@ impl Scene {
                 let mut masses = type_masses;
                 masses.resize(params.types(), physics.mass);
                 let state = initial_state(&start.frame, &masses)?;
-                (state, params, start.topology)
+                let topology = self.init_topology(start.topology, &start.frame)?;
+                (state, params, topology)
             }
             None => {
                 let plans = self.chain_plans()?;
@@ -95,7 +97,6 @@ impl Scene {
             for (key, set) in [
                 ("walls", self.geometry.walls.is_some()),
                 ("shear_rate", self.physics.sheared()),
-                ("init", self.geometry.init.is_some()),
             ] {
                 let why = "cannot be combined with [[molecules]] yet";
                 check::require(key, "set", !set, why)?;
@@ -119,6 +120,55 @@ impl Scene {
             angles,
         };
         topology.build().map(Some)
+    }
+
+    /// The topology of a run from `init`: a data file's (`file`), or the scene's chains laid
+    /// over the `frame` of a GSD file, whose bonds (if it has any) must be theirs and whose
+    /// types must be their beads'.
+    fn init_topology(
+        &self,
+        file: Option<Topology>,
+        frame: &Frame,
+    ) -> Result<Option<Topology>, ParamError> {
+        let bad = |why: String| {
+            ParamError::new("init", self.geometry.init.clone().unwrap_or_default(), why)
+        };
+        let scene = self.topology()?;
+        if file.is_some() {
+            if scene.is_some() {
+                return Err(bad("brings its own bonds: leave [[molecules]] out".into()));
+            }
+            return Ok(file);
+        }
+        let pairs: Vec<[u32; 2]> = scene
+            .iter()
+            .flat_map(|t| t.bonds().iter().map(|b| [b.i, b.j]))
+            .collect();
+        if let Some(b) = frame.bonds.as_ref().filter(|b| !b.group.is_empty()) {
+            if scene.is_none() {
+                return Err(bad(format!(
+                    "has {} bonds, whose coefficients a GSD file does not hold: give them \
+                     with [[bond_types]] and [[molecules]], or start from a LAMMPS data file",
+                    b.group.len()
+                )));
+            }
+            if b.group != pairs {
+                return Err(bad("has other bonds than the scene's [[molecules]]".into()));
+            }
+        }
+        if scene.is_some() {
+            let plans = self.chain_plans()?;
+            let kinds = chains::kinds(&plans, &self.type_counts()?);
+            let beads = pairs.iter().map(|p| p[1] as usize + 1).max().unwrap_or(0);
+            if let Some(id) = (0..beads).find(|&i| frame.typeid[i] != u32::from(kinds[i])) {
+                return Err(bad(format!(
+                    "particle {id} is of type {} in the frame, of type {} as a bead of the \
+                     scene's chains",
+                    frame.typeid[id], kinds[id]
+                )));
+            }
+        }
+        Ok(scene)
     }
 
     /// The particles of each type: the species' counts, or all of them of the one type.

@@ -273,9 +273,60 @@ fn a_scene_s_chains_build_a_bonded_system() {
     for (text, key) in [
         (format!("{text}[walls]\n"), "walls"),
         (format!("shear_rate = 0.1\n{text}"), "shear_rate"),
-        (format!("init = \"x.gsd\"\n{text}"), "init"),
     ] {
         let e = error_of(&text);
         assert!(e.contains(&format!("invalid {key} ")), "{e}");
     }
+}
+
+/// A melt's trajectory frames carry its bonds by particle id (GSD `bonds/...`, so that OVITO
+/// draws the chains), and the melt restarts from a frame: the scene's chains give the topology
+/// (GSD holds no coefficients), and the frame's bonds must be theirs; a scene without
+/// molecules or with other chains is refused, naming init.
+#[test]
+fn a_melt_restarts_from_a_gsd_frame_with_its_chains() {
+    use crate::observer::Recorder;
+    use crate::scene::TrajectorySpec;
+    let melt = "n = 60\n[[bond_types]]\nname = \"b\"\nstyle = \"harmonic\"\nk = 2.0\n\
+                [[molecules]]\nlength = 4\ncount = 5\nbond = \"b\"\n";
+    let scene = Scene::from_toml(melt, "t").unwrap();
+    let mut sys = scene.system(0.05, 3).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let spec = TrajectorySpec {
+        file: dir.path().join("melt.gsd"),
+        every: 1.0,
+        fields: None,
+    };
+    let origin = crate::start::Origin::default();
+    Recorder::start(&spec, 0.05, (3, 1), scene.type_names(1), origin, &mut sys).unwrap();
+    let read = dpd_trajectory::gsd::GsdReader::open(&spec.file).unwrap();
+    let bonds = read.frame(0).unwrap().bonds.unwrap();
+    assert_eq!(
+        (bonds.types, bonds.typeid),
+        (vec!["1".to_string()], vec![0; 15])
+    );
+    assert_eq!(&bonds.group[..4], [[0, 1], [1, 2], [2, 3], [4, 5]]);
+    let init = format!("init = {:?}\n", spec.file.display().to_string());
+    let again = Scene::from_toml(&format!("{init}{melt}"), "t").unwrap();
+    again.validate().unwrap();
+    let copy = again.system(0.05, 3).unwrap();
+    assert_eq!(copy.topology(), sys.topology());
+    let plain = Scene::from_toml(&format!("{init}n = 60\n"), "t").unwrap();
+    let e = plain.system(0.05, 3).unwrap_err().to_string();
+    assert!(
+        e.contains("has 15 bonds, whose coefficients a GSD file does not hold"),
+        "{e}"
+    );
+    let other = format!(
+        "{init}{}",
+        melt.replace("length = 4\ncount = 5", "length = 5\ncount = 4")
+    );
+    let e = Scene::from_toml(&other, "t")
+        .unwrap()
+        .system(0.05, 3)
+        .unwrap_err();
+    assert!(
+        e.to_string().contains("has other bonds than the scene's"),
+        "{e}"
+    );
 }
