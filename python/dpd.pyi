@@ -251,6 +251,9 @@ class Simulation:
     def restore(self, snapshot: Snapshot) -> None: ...
     def save_checkpoint(self, path: _Path) -> None: ...
     def load_checkpoint(self, path: _Path) -> None: ...
+    def write_data(self, path: _Path) -> None:
+        """Write the state as a LAMMPS data file (with the bonds and angles)."""
+
     def trajectory(
         self,
         file: _Path | None,

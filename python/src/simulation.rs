@@ -8,6 +8,7 @@ use crate::{invalid, to_python, wait, BlowUpError};
 use dpd_core::observe::thermo;
 use dpd_core::{AdvanceError, CheckpointError, ParamError, Scheme, System, Vec3};
 use dpd_ir::lang::Options;
+use dpd_measure::data_file::data_of;
 use dpd_measure::observer::{Observer, Recorder};
 use dpd_measure::scene::{Field, TrajectorySpec};
 use dpd_measure::start::Origin;
@@ -15,6 +16,7 @@ use dpd_measure::Keys;
 use dpd_measure::Scene;
 use dpd_schemes::check::CheckError;
 use dpd_schemes::registry::resolve_with;
+use dpd_trajectory::TrajectoryError;
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArrayDyn, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyTypeError, PyValueError};
@@ -158,6 +160,13 @@ impl Simulation {
     #[pyo3(signature = (*, allow_inconsistent=false, **scene), text_signature = "(*, allow_inconsistent=False, scene=None, scheme=None, dt=None, n=None, density=None, box=None, a=None, gamma=None, kbt=None, mass=None, weight_exponent=None, seed=None, threads=None, skin=None, shear_rate=None, body_force=None, walls=None, init=None, init_reset=None, trajectory=None, time=None, average_fraction=None, sample_interval=None, runs=None, energy_balance=None, like_neighbours=None, species=None, pairs=None, bond_types=None, angle_types=None, molecules=None, rdf=None, vacf=None, profile=None, sweep=None, description=None)")]
     fn new(allow_inconsistent: bool, scene: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
         let scene = scene_of(scene, &Keys::new())?;
+        if let Some(file) = &scene.output.write_data {
+            return Err(invalid(format!(
+                "invalid write_data = {:?}: `dpd run` writes each run's last state there; from \
+                 Python call sim.write_data(path) when the state is the one to write",
+                file.display()
+            )));
+        }
         let run = &scene.run;
         let mut system = scene.system(run.dt, run.seed).map_err(invalid)?;
         let scheme = scheme_of(&run.scheme, allow_inconsistent, &system)?;
@@ -512,6 +521,32 @@ impl Simulation {
         self.scene.run.dt = self.system.dt();
         self.scene.geometry.n = self.system.len();
         Ok(())
+    }
+
+    /// write_data(path)
+    /// --
+    ///
+    /// Write the state as a LAMMPS data file, as `dpd run --write-data` writes a run's last
+    /// one (docs/systems.md): type names, masses, positions and velocities by atom id = particle
+    /// id + 1, the pair coefficients, and the bonds and angles with their coefficients.
+    /// `Simulation(init=path)` (with the same species) and LAMMPS's `read_data` start from it.
+    /// Raises ValueError with walls or shear (a data file holds a periodic box), OSError when
+    /// the file cannot be written.
+    fn write_data(&self, path: PathBuf) -> PyResult<()> {
+        let sys = &self.system;
+        if sys.walls().is_some() || sys.shear().is_some() {
+            return Err(invalid(format!(
+                "cannot write_data {}: a data file holds a periodic box, not walls or a shear \
+                 rate",
+                path.display()
+            )));
+        }
+        let title = format!("dpd from Python, step {}, dt = {}", self.step(), sys.dt());
+        let data = data_of(sys, &self.types(), &title).map_err(invalid)?;
+        data.write(&path).map_err(|e| match &e {
+            TrajectoryError::Io { source, .. } => os_error(source, e.to_string()),
+            _ => invalid(e),
+        })
     }
 
     /// trajectory(file, every=None, fields=None)

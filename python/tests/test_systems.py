@@ -331,3 +331,31 @@ def test_ideal_chains_have_the_gaussian_sizes():
                     (m.gyration_squared, 0.6)):
         assert e is not None and e.stderr is not None and e.stderr < 0.03 * want, (e, want)
         assert abs(e.mean - want) < 4 * e.stderr, (e, want)
+
+
+def test_write_data_starts_the_same_system(tmp_path):
+    # The file of sim.write_data (the writer of `dpd run --write-data`) read back as init: the
+    # same types, masses, bonds, angles and positions bit for bit, velocities to rounding (the
+    # file holds p / m), so the same potential energy and pressure.
+    sim = _melt(n=60, seed=2, threads=1)
+    sim.run(steps=20)
+    sim.write_data(tmp_path / "melt.data")
+    back = dpd.Simulation(init=str(tmp_path / "melt.data"), n=60, threads=1)
+    assert back.types == sim.types and np.array_equal(back.typeid, sim.typeid)
+    assert np.array_equal(back.masses, sim.masses)
+    assert np.array_equal(back.bonds, sim.bonds) and np.array_equal(back.angles, sim.angles)
+    assert back.bond_types == ["1"] and back.angle_types == ["1"]
+    assert np.array_equal(back.positions, sim.positions)
+    assert np.allclose(back.velocities, sim.velocities, rtol=1e-14, atol=0)
+    a, b = sim.observables(), back.observables()
+    for name in ("potential_energy", "pressure"):
+        assert b[name] == pytest.approx(a[name], rel=1e-12), name
+    mix = _mixture(n=200, seed=3, threads=1)
+    mix.write_data(tmp_path / "mix.data")
+    again = _mixture(init=str(tmp_path / "mix.data"), n=200, threads=1)
+    assert again.types == ["A", "B"] and np.array_equal(again.typeid, mix.typeid)
+    assert np.array_equal(again.masses, mix.masses)
+    with pytest.raises(ValueError, match=r"invalid write_data = \"x.data\": `dpd run` writes"):
+        dpd.Simulation(write_data="x.data")  # type: ignore[call-arg]
+    with pytest.raises(FileNotFoundError, match="missing"):
+        sim.write_data(tmp_path / "missing" / "x.data")
