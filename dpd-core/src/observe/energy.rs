@@ -118,19 +118,7 @@ pub fn hamiltonian(sys: &mut System) -> f64 {
 /// The potential energy `U = sum over pairs of phi(r_ij)` plus the bonded energy
 /// ([`System::bonded_energy`]: bonds and angles, 0 without a topology).
 pub fn potential_energy(sys: &mut System) -> f64 {
-    let bonded = sys.bonded_energy();
-    bonded
-        + sys.with_forces(|sys, pairs, _| {
-            pairs
-                .iter()
-                .map(|pair| {
-                    let kind = sys.kinds();
-                    sys.params()
-                        .soft(kind[pair.i as usize], kind[pair.j as usize])
-                        .energy(pair.w)
-                })
-                .sum::<f64>()
-        })
+    sys.bonded_energy() + super::pair_sum(sys, |soft, pair| soft.energy(pair.w))
 }
 
 #[cfg(test)]

@@ -22,3 +22,25 @@ pub use stress::{
 };
 pub use thermo::{kinetic_temperature, thermo, Thermo};
 pub use vacf::Vacf;
+
+use crate::pairs::Pair;
+use crate::potential::Soft;
+use crate::system::System;
+
+/// `sum_pairs term(soft_ij, pair)` over the interacting pairs at the current positions, with
+/// each pair's repulsion (without moving the neighbour-list rebuilds, see
+/// `System::with_forces`).
+fn pair_sum<T: std::iter::Sum>(sys: &mut System, term: impl Fn(Soft, &Pair) -> T) -> T {
+    sys.with_forces(|sys, pairs, _| {
+        let kind = sys.kinds();
+        pairs
+            .iter()
+            .map(|pair| {
+                let soft = sys
+                    .params()
+                    .soft(kind[pair.i as usize], kind[pair.j as usize]);
+                term(soft, pair)
+            })
+            .sum()
+    })
+}

@@ -27,7 +27,8 @@ use serde::Serialize;
 pub struct Stress {
     /// `-(1/V) sum_i m_i (v_i - u_i) (x) (v_i - u_i)` at the end of the step.
     pub kinetic: Tensor,
-    /// `-(1/V) sum_pairs q_ij (x) F^C_ij` at the end of the step.
+    /// `-(1/V) (sum_pairs q_ij (x) F^C_ij + the bonded virial)` at the end of the step (bonds
+    /// `d (x) F`, angles `a (x) F_i + b (x) F_k` with the arms from the vertex).
     pub conservative: Tensor,
     /// `-(1/V) sum_pairs q_ij (x) (F^D_ij + F^R_ij)`, time-averaged over the steps since the
     /// previous sample from the applied pair impulses.
@@ -106,21 +107,14 @@ fn kinetic_tensor(sys: &System) -> Tensor {
         .sum()
 }
 
-/// `sum_pairs q_ij (x) F^C_ij` at the current positions (minimum images across a sliding
-/// boundary), without moving the neighbour-list rebuilds.
+/// `sum_pairs q_ij (x) F^C_ij` plus the bonded virial tensor at the current positions (minimum
+/// images across a sliding boundary), without moving the neighbour-list rebuilds.
 fn conservative_virial(sys: &mut System) -> Tensor {
-    sys.with_forces(|sys, pairs, _| {
-        pairs
-            .iter()
-            .map(|pair| {
-                let kind = sys.kinds();
-                let soft = sys
-                    .params()
-                    .soft(kind[pair.i as usize], kind[pair.j as usize]);
-                soft.virial(pair.w) * pair.e * pair.e.transpose()
-            })
-            .sum()
-    })
+    let bonded = sys.bonded_virial_tensor();
+    bonded
+        + super::pair_sum(sys, |soft, pair| {
+            soft.virial(pair.w) * pair.e * pair.e.transpose()
+        })
 }
 
 impl System {

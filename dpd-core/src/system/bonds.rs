@@ -6,7 +6,7 @@ use crate::bonded::{BondedSums, Frame, Overstretch};
 use crate::boundary::{LeesEdwards, PeriodicBox};
 use crate::error::ParamError;
 use crate::stamp::Stamp;
-use crate::Vec3;
+use crate::{Tensor, Vec3};
 
 impl System {
     /// Whether the system has bonded forces: a topology with some bond or angle.
@@ -46,6 +46,13 @@ impl System {
         self.bonded
             .as_ref()
             .map_or_else(BondedSums::default, |located| located.sums(self.frame()))
+    }
+
+    /// The bonded virial tensor at the current positions (zero without a topology).
+    pub(crate) fn bonded_virial_tensor(&self) -> Tensor {
+        self.bonded
+            .as_ref()
+            .map_or_else(Tensor::zeros, |located| located.virial_tensor(self.frame()))
     }
 
     /// The bonded forces at the current positions, evaluated afresh and not cached (for
