@@ -182,9 +182,10 @@ std::string positive_friction(Pair *pair, const Thermostat &t)
 
 FixDPDSplit::FixDPDSplit(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), scheme(nullptr), kt(0.0), exponent(2.0), max_rc(0.0), seed(0),
-    exclusive(true), tally_end(true), kernels(nullptr), list(nullptr), soft(nullptr), split(0),
+    exclusive(true), tally_end(true), kernels(nullptr), list(nullptr), soft(nullptr),
+    recorder(nullptr), record_seen(-1), record_moves(-1), record_build(-1), split(0),
     last_drift(-1), forces_stale(false), ghosts_stale(false), step_eflag(0), step_vflag(0),
-    epoch(0), full_epoch(-1), moves(0), colour_build(-1), comm_mode(COMM_V), full_virial{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}
+    epoch(0), full_epoch(-1), moves(0), colour_build(-1), pairs_build(-1), comm_mode(COMM_V), full_virial{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}
 {
   const char *usage = "fix ID group dpd/split SCHEME kT gamma r_c seed [exponent s] "
                       "[coeff I J gamma r_c] ... [exclusive yes|no] [tally end|evaluation]";
@@ -345,6 +346,9 @@ void FixDPDSplit::init()
   check_subdomain_size();
   check_trotter_input();
   check_groups();
+  // Sweeps at the positions of dpd/soft's last evaluation take its in-range pairs.
+  recorder = any_stage(*scheme, needs_ghosts) ? dynamic_cast<PairDPDSoft *>(force->pair) : nullptr;
+  if (recorder) recorder->record_pairs();
   neighbor->add_request(this);
 }
 
@@ -503,8 +507,11 @@ void FixDPDSplit::init_list(int, NeighList *ptr)
   list = ptr;
 }
 
-void FixDPDSplit::setup(int)
+void FixDPDSplit::setup(int vflag)
 {
+  // No impulses yet: the fix's share of the setup step's virial is zero (not the memory the
+  // virial array was made with, which read as NaN in the pressure at step 0 on 2 ranks).
+  v_init(vflag);
   // A scheme without B or F stages (SAS = T A T) never applies atom->f, so the forces other
   // fixes add to it after LAMMPS's evaluation would be silently lost.
   if (!any_stage(*scheme, needs_forces) && modify->n_post_force_any > 0)
@@ -515,6 +522,7 @@ void FixDPDSplit::setup(int)
   forces_stale = ghosts_stale = false;
   ++epoch;
   ++moves;
+  note_evaluation();
   for (int k = 1; k <= scheme->nstages; ++k)
     if (kinetic_wanted[k]) record(k);
 }
@@ -568,6 +576,7 @@ void FixDPDSplit::final_integrate()
   // LAMMPS has communicated, possibly re-neighboured, and computed forces.
   forces_stale = ghosts_stale = false;
   ++epoch;
+  note_evaluation();
   run_stages(split, scheme->nstages);
   // Observables at the step's end (`tally end`): when the last force evaluation of the step
   // came before its last drift, re-evaluate forces (and so energy and virial) at the final
@@ -689,11 +698,11 @@ void FixDPDSplit::prepare_atoms()
     inv_mass[i] = 1.0 / (atom->rmass ? atom->rmass[i] : atom->mass[atom->type[i]]);
 }
 
-/// The pairs of the neighbour list, bucketed by the octant of the subdomain holding atom i,
+/// The owned atoms of the neighbour list, bucketed by the octant of the subdomain holding them,
 /// kept until the next neighbour-list build (or, in a deforming box, recomputed every time).
 /// An atom's colour is that of its position at the build: it has moved at most skin/2 since,
 /// which the size limit of the staged sweep already allows for (see the header of this file).
-void FixDPDSplit::colour_pairs_of_list()
+void FixDPDSplit::colour_atoms_of_list()
 {
   if (colour_build == neighbor->ncalls && !domain->box_change) return;
   colour_build = neighbor->ncalls;
@@ -704,7 +713,7 @@ void FixDPDSplit::colour_pairs_of_list()
   const double *hi = tilted ? domain->subhi_lamda : domain->subhi;
   double mid[3];
   for (int d = 0; d < 3; ++d) mid[d] = 0.5 * (lo[d] + hi[d]);
-  for (auto &pairs : colour_pairs) pairs.clear();
+  for (auto &atoms : colour_atoms) atoms.clear();
   for (int ii = 0; ii < list->inum; ++ii) {
     int i = list->ilist[ii];
     double lamda[3];
@@ -714,11 +723,26 @@ void FixDPDSplit::colour_pairs_of_list()
       p = lamda;
     }
     int colour = (p[0] >= mid[0]) | ((p[1] >= mid[1]) << 1) | ((p[2] >= mid[2]) << 2);
-    std::vector<int> &pairs = colour_pairs[colour];
-    const int *jlist = list->firstneigh[i];
-    for (int jj = 0; jj < list->numneigh[i]; ++jj) {
-      pairs.push_back(i);
-      pairs.push_back(jlist[jj] & NEIGHMASK);
+    colour_atoms[colour].push_back(i);
+  }
+}
+
+/// The listed pairs of each colour's atoms, in the list's order (for sweeps without dpd/soft's
+/// record, and F stages).
+void FixDPDSplit::colour_pairs_of_list()
+{
+  colour_atoms_of_list();
+  if (pairs_build == colour_build && !domain->box_change) return;
+  pairs_build = colour_build;
+  for (int c = 0; c < 8; ++c) {
+    std::vector<int> &pairs = colour_pairs[c];
+    pairs.clear();
+    for (int i : colour_atoms[c]) {
+      const int *jlist = list->firstneigh[i];
+      for (int jj = 0; jj < list->numneigh[i]; ++jj) {
+        pairs.push_back(i);
+        pairs.push_back(jlist[jj] & NEIGHMASK);
+      }
     }
   }
 }
@@ -734,7 +758,13 @@ void FixDPDSplit::sweep(const Stage &stage)
 {
   if (domain->box_change) check_subdomain_size();
   prepare_atoms();
-  colour_pairs_of_list();
+  // The pairs and their geometry from dpd/soft's evaluation at these positions, if it recorded
+  // one, else from the neighbour list.
+  bool from_record = recorded();
+  if (from_record)
+    colour_atoms_of_list();
+  else
+    colour_pairs_of_list();
   int flow = stage.flow == DpdSplit::FLOW_O  ? DPD_LAMMPS_SWEEP_O
       : stage.flow == DpdSplit::FLOW_OB      ? DPD_LAMMPS_SWEEP_OB
                                              : DPD_LAMMPS_SWEEP_T;
@@ -745,17 +775,30 @@ void FixDPDSplit::sweep(const Stage &stage)
   comm_mode = COMM_V;
   comm->forward_comm(this);
   for (int c = 0; c < 8; ++c) {
-    const std::vector<int> &pairs = colour_pairs[stage.reverse ? 7 - c : c];
+    int colour = stage.reverse ? 7 - c : c;
     int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
     ghost_v.assign(&atom->v[0][0] + 3 * nlocal, &atom->v[0][0] + 3 * nall);
-    check_status(dpd_lammps_sweep(kernels, flow, h, seed, (uint64_t) update->ntimestep,
-                                  stage.stream, stage.reverse, pairs.size() / 2, pairs.data(),
-                                  nall, &atom->x[0][0], &atom->v[0][0], inv_mass.data(),
-                                  atom->tag, sizeof(tagint), atom->type,
-                                  trotter ? soft->strengths() : nullptr,
-                                  trotter ? soft->cutoffs() : nullptr,
-                                  vflag_global ? impulses : nullptr),
-                 "sweep");
+    const double *soft_a = trotter ? soft->strengths() : nullptr;
+    const double *soft_rc = trotter ? soft->cutoffs() : nullptr;
+    uint64_t step = (uint64_t) update->ntimestep;
+    if (from_record) {
+      const std::vector<int> &atoms = colour_atoms[colour];
+      check_status(dpd_lammps_sweep_recorded(kernels, flow, h, seed, step, stage.stream,
+                                             stage.reverse, atoms.size(), atoms.data(),
+                                             recorder->record(), nall, &atom->x[0][0],
+                                             &atom->v[0][0], inv_mass.data(), atom->tag,
+                                             sizeof(tagint), atom->type, soft_a, soft_rc,
+                                             vflag_global ? impulses : nullptr),
+                   "sweep over dpd/soft's pairs");
+    } else {
+      const std::vector<int> &pairs = colour_pairs[colour];
+      check_status(dpd_lammps_sweep(kernels, flow, h, seed, step, stage.stream, stage.reverse,
+                                    pairs.size() / 2, pairs.data(), nall, &atom->x[0][0],
+                                    &atom->v[0][0], inv_mass.data(), atom->tag, sizeof(tagint),
+                                    atom->type, soft_a, soft_rc,
+                                    vflag_global ? impulses : nullptr),
+                   "sweep");
+    }
     comm_mode = COMM_DV;
     comm->reverse_comm(this);
     comm_mode = COMM_V;
@@ -843,6 +886,23 @@ void FixDPDSplit::refresh(int eflag, int vflag)
   if (force->kspace && force->kspace->compute_flag) force->kspace->compute(eflag, vflag);
   if (force->newton) comm->reverse_comm();
   forces_stale = false;
+  note_evaluation();
+}
+
+/// After a force evaluation at the current positions: if dpd/soft recorded it, its record
+/// holds the pairs of these positions and atom order.
+void FixDPDSplit::note_evaluation()
+{
+  if (!recorder || recorder->recordings() == record_seen) return;
+  record_seen = recorder->recordings();
+  record_moves = moves;
+  record_build = neighbor->ncalls;
+}
+
+/// Whether dpd/soft's record is of the current positions and atom order.
+bool FixDPDSplit::recorded() const
+{
+  return recorder && record_moves == moves && record_build == neighbor->ncalls;
 }
 
 int FixDPDSplit::pack_forward_comm(int n, int *list_, double *buf, int pbc_flag, int *pbc)

@@ -57,6 +57,13 @@ class FixDPDSplit : public Fix {
   class NeighList *list;
   /// The conservative force of T stages (null when the scheme has none), set by init().
   const class PairDPDSoft *soft;
+  /// The pair style when it is dpd/soft and the scheme sweeps: it records the pairs within its
+  /// cutoff at each evaluation; `record_seen` is its count of recordings when the fix last
+  /// looked, and the last recording was at drift count `record_moves` and neighbour-list build
+  /// `record_build` (see `recorded()`).
+  class PairDPDSoft *recorder;
+  long long record_seen, record_moves;
+  bigint record_build;
 
   /// Stages [0, split) run in initial_integrate, the rest in final_integrate, so that
   /// LAMMPS's own force evaluation falls at the first stage needing forces after a drift.
@@ -92,7 +99,10 @@ class FixDPDSplit : public Fix {
   std::vector<double> inv_mass, ghost_v, full;
   /// The virial of the F pair forces in `full` (xx, yy, zz, xy, xz, yz).
   double full_virial[6];
-  std::vector<int> colour_pairs[8];
+  /// Per colour, the owned atoms (in the neighbour list's order) and their listed pairs; the
+  /// pairs are bucketed only when a sweep or F stage needs them (`pairs_build`).
+  std::vector<int> colour_atoms[8], colour_pairs[8];
+  bigint pairs_build;
   /// Per stage (1-based; 0 unused): whether a compute asked for the velocities after it, and
   /// their local kinetic tensor at the last step.
   std::vector<char> kinetic_wanted;
@@ -115,7 +125,10 @@ class FixDPDSplit : public Fix {
   void check_trotter_input();
   void check_groups();
   void prepare_atoms();
+  void colour_atoms_of_list();
   void colour_pairs_of_list();
+  void note_evaluation();
+  bool recorded() const;
   void check_status(int status, const char *what);
 };
 

@@ -3,6 +3,7 @@
 #ifndef DPD_PAIR_DPD_SOFT_H
 #define DPD_PAIR_DPD_SOFT_H
 
+#include "dpd_lammps.h"
 #include "pair.h"
 
 #include <vector>
@@ -22,6 +23,13 @@ class PairDPDSoft : public Pair {
   /// has run: fix dpd/split's T stages include this force in their exact pair update.
   const double *strengths() const { return a.data(); }
   const double *cutoffs() const { return cut.data(); }
+  /// Record the pairs within the cutoff of every evaluation of this run, with their geometry
+  /// (fix dpd/split asks for it in its init(), after this style's init_style() has reset it):
+  /// the fix's sweeps at the positions of the last evaluation take them from `record()` instead
+  /// of passing over the neighbour list. `recordings()` counts the evaluations recorded.
+  void record_pairs() { recording = true; }
+  const DpdLammpsRecord *record() const { return pair_record; }
+  long long recordings() const { return recorded; }
 
  private:
   double cut_global;
@@ -30,6 +38,9 @@ class PairDPDSoft : public Pair {
   std::vector<double> a, cut;
   /// The special-bond factors of the current run (force->special_lj).
   double special[4];
+  bool recording;
+  DpdLammpsRecord *pair_record;
+  long long recorded;
 
   void allocate();
   /// The index of type pair (i, j) in `a` and `cut`.

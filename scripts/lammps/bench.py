@@ -5,16 +5,21 @@ force from pair dpd at zero friction, a pair table or the plugin's pair dpd/soft
 velocity Verlet (`pair dpd` + `fix nve`) and Shardlow splitting (`pair dpd/fdt` + `fix
 shardlow` + `fix nve`, package DPD-REACT), on the standard box (density 3, a = 25, gamma = 4.5,
 k_B T = 1, r_c = 1, skin 0.4, dt = 0.04) at each N and rank count. The time is LAMMPS's loop
-time of the timed run, after a warm-up run (setup excluded). Standard library only.
+time of the timed run, after a warm-up run (setup excluded). With `--cpu`, also the CPU time
+per particle-step, summed over the ranks: the difference between a run with the timed steps
+twice and one with them once, each measured as the CPU time of the child processes
+(getrusage), so that, unlike wall time, it leaves out the time spent waiting for a core on a
+loaded machine. Standard library only.
 
     python3 scripts/lammps/bench.py --lmp VENV/bin/lmp --mpirun VENV/bin/mpirun \\
         --plugin PLUGIN.so --work DIR [--n 24000] [--ranks 1 --ranks 2] [--steps 200]
-        [--warmup 200] [--variant NAME]... [--thermo N] [--thermo-style "custom step temp"]
+        [--warmup 200] [--variant NAME]... [--thermo N] [--thermo-style "custom step temp"] [--cpu]
 """
 
 import argparse
 import os
 import re
+import resource
 import subprocess
 
 GAMMA, KT, A = 4.5, 1.0, 25.0
@@ -74,6 +79,15 @@ run {steps}
 """
 
 
+def run(args, path, ranks):
+    """LAMMPS on `path` with `ranks` ranks: its output and the CPU seconds its processes used."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    out = subprocess.run([args.mpirun, "-np", str(ranks), args.lmp, "-in", path, "-log", "none"],
+                         capture_output=True, text=True, cwd=args.work)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return out, (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     for name in ("--lmp", "--mpirun", "--plugin", "--work"):
@@ -91,27 +105,34 @@ def main():
     # Its columns: LAMMPS's default `one` (temperature, pair and molecular energy, total
     # energy, pressure: energy and virial tallied on those steps), or e.g. `custom step temp`.
     p.add_argument("--thermo-style", default="one")
+    p.add_argument("--cpu", action="store_true", help="also CPU ns per particle-step (see above)")
     args = p.parse_args()
     os.makedirs(args.work, exist_ok=True)
     write_table(os.path.join(args.work, "dpd.table"))
-    print("| N | variant | " + " | ".join(f"{r} rank(s): ns/particle-step" for r in args.ranks or [1, 2]) + " |")
+    unit = "ns/particle-step" + (" (wall, CPU)" if args.cpu else "")
+    print("| N | variant | " + " | ".join(f"{r} rank(s): {unit}" for r in args.ranks or [1, 2]) + " |")
     for n in args.n or [24000]:
         for name in args.variant or list(VARIANTS):
             style, lines = VARIANTS[name]
-            path = os.path.join(args.work, "bench.in")
-            with open(path, "w") as f:
-                f.write(lammps_input(args.plugin, style, lines, n, args.steps, args.warmup, args.thermo,
-                                     args.thermo_style))
+            paths = []
+            for steps in (args.steps, 2 * args.steps)[:2 if args.cpu else 1]:
+                paths.append(os.path.join(args.work, f"bench-{steps}.in"))
+                with open(paths[-1], "w") as f:
+                    f.write(lammps_input(args.plugin, style, lines, n, steps, args.warmup, args.thermo,
+                                         args.thermo_style))
             cells = []
             for ranks in args.ranks or [1, 2]:
-                out = subprocess.run([args.mpirun, "-np", str(ranks), args.lmp, "-in", path, "-log", "none"],
-                                     capture_output=True, text=True, cwd=args.work)
+                out, cpu = run(args, paths[0], ranks)
                 loops = re.findall(r"Loop time of (\S+) on \d+ procs for (\d+) steps with (\d+) atoms", out.stdout)
                 if out.returncode != 0 or len(loops) != 2:
                     cells.append("failed: " + (out.stdout + out.stderr).strip().splitlines()[-1])
                     continue
                 seconds, steps, atoms = float(loops[1][0]), int(loops[1][1]), int(loops[1][2])
-                cells.append(f"{seconds / steps / atoms * 1e9:.0f}")
+                cell = f"{seconds / steps / atoms * 1e9:.0f}"
+                if args.cpu:
+                    twice, cpu2 = run(args, paths[1], ranks)
+                    cell += f", {(cpu2 - cpu) / steps / atoms * 1e9:.0f}" if twice.returncode == 0 else ", failed"
+                cells.append(cell)
             print(f"| {n} | {name} | " + " | ".join(cells) + " |", flush=True)
 
 

@@ -1,8 +1,11 @@
 //! The C entry points of the kernels (`dpd_lammps.h` in the plugin): raw pointers in, checked
 //! slices handed to [`Kernels`], a `DPD_LAMMPS_*` status out.
 
+use crate::record::PairRecord;
 use crate::soft::SoftStyle;
-use crate::{Atoms, Kernels, SweepFlow, Tags, DPD_LAMMPS_FLOW, DPD_LAMMPS_NULL, DPD_LAMMPS_TAG};
+use crate::{
+    Atoms, Conservative, Kernels, SweepFlow, Tags, DPD_LAMMPS_FLOW, DPD_LAMMPS_NULL, DPD_LAMMPS_TAG,
+};
 use std::ffi::{c_char, c_int, c_void};
 
 /// Create the kernels of one fix: `k_B T`, the weight exponent, and for `ntypes` atom types
@@ -206,6 +209,117 @@ pub unsafe extern "C" fn dpd_lammps_sweep(
     soft_rc: *const f64,
     virial: *mut f64,
 ) -> c_int {
+    // SAFETY: the contract.
+    unsafe {
+        with_sweep(
+            (kernels, flow, seed, step, stream),
+            (npairs, pairs),
+            natoms,
+            (x, v, inv_mass),
+            (tag, tag_bytes, types),
+            (soft_a, soft_rc, virial),
+            |c, flow, v, style, virial| {
+                c.kernels.sweep(
+                    flow,
+                    h,
+                    c.key,
+                    c.pairs,
+                    reverse != 0,
+                    &c.atoms,
+                    v,
+                    style,
+                    virial,
+                )
+            },
+        )
+    }
+}
+
+/// [`dpd_lammps_sweep`] over the pairs that `record` holds of the `ncolour` atoms `colour` (atom
+/// indices), in that order, in place of a pair list ([`Kernels::sweep_recorded`]): `record`
+/// must come from a `dpd/soft` evaluation ([`crate::soft::dpd_lammps_soft_forces`]) at the
+/// current positions of these `natoms` atoms. Returns `DPD_LAMMPS_INDEX` if it is not of
+/// `natoms` atoms or an index of `colour` lies outside them, else as [`dpd_lammps_sweep`].
+///
+/// # Safety
+/// As for [`dpd_lammps_sweep`], with `colour` pointing to `ncolour` ints (null when 0) in place
+/// of `pairs`, and `record` null or from `dpd_lammps_record_new`, not written during the call.
+#[no_mangle]
+pub unsafe extern "C" fn dpd_lammps_sweep_recorded(
+    kernels: *const Kernels,
+    flow: c_int,
+    h: f64,
+    seed: u64,
+    step: u64,
+    stream: c_int,
+    reverse: c_int,
+    ncolour: usize,
+    colour: *const c_int,
+    record: *const PairRecord,
+    natoms: usize,
+    x: *const f64,
+    v: *mut f64,
+    inv_mass: *const f64,
+    tag: *const c_void,
+    tag_bytes: c_int,
+    types: *const c_int,
+    soft_a: *const f64,
+    soft_rc: *const f64,
+    virial: *mut f64,
+) -> c_int {
+    // SAFETY: the contract.
+    let (colour, record) = unsafe { (slice(colour, ncolour), record.as_ref()) };
+    let (Some(colour), Some(record)) = (colour, record) else {
+        return DPD_LAMMPS_NULL;
+    };
+    // SAFETY: the contract.
+    unsafe {
+        with_sweep(
+            (kernels, flow, seed, step, stream),
+            (0, std::ptr::null()),
+            natoms,
+            (x, v, inv_mass),
+            (tag, tag_bytes, types),
+            (soft_a, soft_rc, virial),
+            |c, flow, v, style, virial| {
+                c.kernels.sweep_recorded(
+                    flow,
+                    h,
+                    c.key,
+                    (colour, record),
+                    reverse != 0,
+                    &c.atoms,
+                    v,
+                    style,
+                    virial,
+                )
+            },
+        )
+    }
+}
+
+/// The checked arguments of a sweep call handed to `run`: the call, the flow, the velocities,
+/// T's conservative style (built from `soft_a` and `soft_rc`) and the virial; or the status of
+/// what is wrong.
+///
+/// # Safety
+/// As for [`dpd_lammps_sweep`].
+#[allow(clippy::type_complexity)]
+unsafe fn with_sweep(
+    (kernels, flow, seed, step, stream): (*const Kernels, c_int, u64, u64, c_int),
+    pairs: (usize, *const c_int),
+    natoms: usize,
+    (x, v, inv_mass): (*const f64, *mut f64, *const f64),
+    (tag, tag_bytes, types): (*const c_void, c_int, *const c_int),
+    (soft_a, soft_rc, virial): (*const f64, *const f64, *mut f64),
+    run: impl FnOnce(
+        &Call,
+        SweepFlow,
+        &mut [f64],
+        Option<&Conservative>,
+        Option<&mut [f64; 6]>,
+    ) -> c_int,
+) -> c_int {
     let flow = match flow {
         0 => SweepFlow::Ou,
         1 => SweepFlow::Bbk,
@@ -218,7 +332,7 @@ pub unsafe extern "C" fn dpd_lammps_sweep(
             Call::new(
                 kernels,
                 (seed, step, stream),
-                (npairs, pairs),
+                pairs,
                 natoms,
                 (x, inv_mass),
                 (tag, tag_bytes),
@@ -244,17 +358,7 @@ pub unsafe extern "C" fn dpd_lammps_sweep(
     } else {
         None
     };
-    c.kernels.sweep(
-        flow,
-        h,
-        c.key,
-        c.pairs,
-        reverse != 0,
-        &c.atoms,
-        v,
-        conservative.as_ref(),
-        virial,
-    )
+    run(&c, flow, v, conservative.as_ref(), virial)
 }
 
 /// Add the dissipative and random pair forces of the F letter (step `dt`) at velocities `v`

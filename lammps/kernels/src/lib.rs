@@ -20,6 +20,7 @@
 
 pub mod abi;
 pub mod atoms;
+pub mod record;
 pub mod soft;
 
 pub use atoms::{Atoms, Tags};
@@ -27,6 +28,7 @@ use dpd_core::flow::{bbk_update, ou_update, trotter_update, Change};
 use dpd_core::force::full_pair_force;
 use dpd_core::rng::pair_normal;
 use dpd_core::Params;
+use record::PairRecord;
 use soft::SoftStyle;
 use std::ffi::c_int;
 
@@ -212,24 +214,22 @@ impl Kernels {
         &self,
         flow: SweepFlow,
         h: f64,
-        (seed, step, stream): (u64, u64, u8),
+        key: (u64, u64, u8),
         pairs: &[[c_int; 2]],
         reverse: bool,
         atoms: &Atoms,
         v: &mut [f64],
         conservative: Option<&Conservative>,
-        mut virial: Option<&mut [f64; 6]>,
+        virial: Option<&mut [f64; 6]>,
     ) -> c_int {
         let status = atoms.check(pairs, v.len(), self.ntypes);
         if status != DPD_LAMMPS_OK {
             return status;
         }
-        let conservative = match (flow, conservative) {
-            // `check` has bounded the types by `ntypes`; the style must cover them.
-            (SweepFlow::Trotter, Some(c)) if c.ntypes() >= self.ntypes => Some(c),
-            (SweepFlow::Trotter, _) => return DPD_LAMMPS_STYLE,
-            _ if !self.friction => return DPD_LAMMPS_OK,
-            _ => None,
+        let conservative = match self.style(flow, conservative) {
+            Ok(Some(style)) => style,
+            Ok(None) => return DPD_LAMMPS_OK,
+            Err(status) => return status,
         };
         // In four passes, so that only the last is a chain of dependent updates: the pairs
         // within their cutoff and their geometry; their normals, several pairs at a time
@@ -243,6 +243,85 @@ impl Kernels {
                 near.push(Near { i, j, e, r, w, c });
             }
         }
+        self.apply(flow, h, key, &near, reverse, atoms, v, conservative, virial);
+        DPD_LAMMPS_OK
+    }
+
+    /// [`Kernels::sweep`] over the pairs of `record` (a `dpd/soft` evaluation at the current
+    /// positions, [`PairRecord`]) of the atoms `colour`, in that order: the same updates, bit
+    /// for bit, as a sweep over the neighbour list's pairs of those atoms, without passing over
+    /// the list. Returns `DPD_LAMMPS_INDEX` if the record is not of these atoms.
+    #[allow(clippy::too_many_arguments)]
+    pub fn sweep_recorded(
+        &self,
+        flow: SweepFlow,
+        h: f64,
+        key: (u64, u64, u8),
+        (colour, record): (&[c_int], &PairRecord),
+        reverse: bool,
+        atoms: &Atoms,
+        v: &mut [f64],
+        conservative: Option<&Conservative>,
+        virial: Option<&mut [f64; 6]>,
+    ) -> c_int {
+        let status = atoms.check(&[], v.len(), self.ntypes);
+        if status != DPD_LAMMPS_OK {
+            return status;
+        }
+        let Some(recorded) = record.pairs_of(colour, atoms.len()) else {
+            return DPD_LAMMPS_INDEX;
+        };
+        let conservative = match self.style(flow, conservative) {
+            Ok(Some(style)) => style,
+            Ok(None) => return DPD_LAMMPS_OK,
+            Err(status) => return status,
+        };
+        let mut near = Vec::with_capacity(recorded.iter().map(|p| p.len()).sum());
+        for &p in recorded.iter().copied().flatten() {
+            let (i, j) = (p.i as usize, p.j as usize);
+            let c = self.coefficients(atoms, i, j);
+            // The record holds the pairs within the pair style's cutoff, at least r_c.
+            if p.r2 < c.rc * c.rc {
+                let (e, r, w) = (p.e, p.r, 1.0 - p.r / c.rc);
+                near.push(Near { i, j, e, r, w, c });
+            }
+        }
+        self.apply(flow, h, key, &near, reverse, atoms, v, conservative, virial);
+        DPD_LAMMPS_OK
+    }
+
+    /// The conservative style a sweep of `flow` includes (`Some(None)` for O and Ob, which
+    /// include none), `None` when the sweep changes nothing (O and Ob without friction), or
+    /// `DPD_LAMMPS_STYLE` for T without a style covering the kernels' types.
+    #[allow(clippy::type_complexity)]
+    fn style<'c>(
+        &self,
+        flow: SweepFlow,
+        conservative: Option<&'c Conservative<'c>>,
+    ) -> Result<Option<Option<&'c Conservative<'c>>>, c_int> {
+        match (flow, conservative) {
+            // The atoms' types are bounded by `ntypes`; the style must cover them.
+            (SweepFlow::Trotter, Some(c)) if c.ntypes() >= self.ntypes => Ok(Some(Some(c))),
+            (SweepFlow::Trotter, _) => Err(DPD_LAMMPS_STYLE),
+            _ if !self.friction => Ok(None),
+            _ => Ok(Some(None)),
+        }
+    }
+
+    /// The last three passes of a sweep over the pairs `near` within their cutoff.
+    #[allow(clippy::too_many_arguments)]
+    fn apply(
+        &self,
+        flow: SweepFlow,
+        h: f64,
+        (seed, step, stream): (u64, u64, u8),
+        near: &[Near],
+        reverse: bool,
+        atoms: &Atoms,
+        v: &mut [f64],
+        conservative: Option<&Conservative>,
+        mut virial: Option<&mut [f64; 6]>,
+    ) {
         let mut z = vec![0.0; near.len()];
         dpd_core::rng::pair_normals(
             seed,
@@ -282,7 +361,6 @@ impl Kernels {
         } else {
             near.iter().zip(&changes).for_each(&mut apply);
         }
-        DPD_LAMMPS_OK
     }
 
     /// Add the dissipative and random pair forces of the full DPD force (the F letter, without
@@ -802,6 +880,119 @@ mod tests {
                 assert_ne!(fast, v0);
             }
         }
+    }
+
+    /// A sweep over the pairs a `dpd/soft` evaluation recorded equals, bit for bit, the sweep
+    /// over the neighbour list's pairs of the same atoms, for every flow, both orders and two
+    /// colours visited one after the other (60 atoms in a cube of side 2, every pair listed
+    /// once, two types whose pair-style cutoffs reach beyond the sweep's r_c); a record of
+    /// other atoms, or a colour naming an atom outside them, is refused with nothing changed.
+    #[test]
+    fn a_sweep_over_recorded_pairs_is_bitwise_the_sweep_over_the_list() {
+        let n: usize = 60;
+        let mut state = 777u64;
+        let mut next = move || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let x: Vec<f64> = (0..3 * n).map(|_| 2.0 * next()).collect();
+        let v0: Vec<f64> = (0..3 * n).map(|_| next() - 0.5).collect();
+        let inv_mass: Vec<f64> = (0..n).map(|k| 1.0 / (1.0 + (k % 3) as f64)).collect();
+        let tag: Vec<i32> = (0..n as i32).map(|k| 5 + 3 * k).collect();
+        let types: Vec<c_int> = (0..n).map(|k| 1 + (k % 2) as c_int).collect();
+        let atoms = Atoms {
+            x: &x,
+            inv_mass: &inv_mass,
+            tag: Tags::Small(&tag),
+            types: &types,
+        };
+        let gamma = [0.0, 0.0, 0.0, 0.0, 4.5, 9.0, 0.0, 9.0, 20.0];
+        let rc = [0.0, 0.0, 0.0, 0.0, 1.0, 0.9, 0.0, 0.9, 1.1];
+        let k = Kernels::new(1.0, 2.0, 2, &gamma, &rc).unwrap();
+        let a = [0.0, 0.0, 0.0, 0.0, 25.0, 40.0, 0.0, 40.0, 25.0];
+        let soft_rc = [0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 1.2];
+        let style = SoftStyle::new(2, &a, &soft_rc, [1.0; 4]).unwrap();
+        // The list: atom i's neighbours are the atoms after it; colours: even and odd atoms,
+        // each visited from the last atom down, as a list need not be in index order.
+        let neighbours = |i: usize| (i as c_int + 1..n as c_int).collect::<Vec<_>>();
+        let colours: [Vec<c_int>; 2] =
+            [0, 1].map(|c| (0..n as c_int).rev().filter(|i| i % 2 == c).collect());
+        let mut record = PairRecord::default();
+        record.clear(n);
+        let mut f = vec![0.0; 3 * n];
+        for i in 0..n {
+            let status = style.atom(
+                i,
+                &neighbours(i),
+                &x,
+                &types,
+                &mut f,
+                &mut soft::Tally::default(),
+                Some(&mut record),
+            );
+            assert_eq!(status, DPD_LAMMPS_OK);
+        }
+        for flow in [SweepFlow::Ou, SweepFlow::Bbk, SweepFlow::Trotter] {
+            let conservative = (flow == SweepFlow::Trotter).then_some(&style);
+            for reverse in [false, true] {
+                let (mut listed, mut recorded) = (v0.clone(), v0.clone());
+                let (mut vl, mut vr) = ([0.0; 6], [0.0; 6]);
+                for (c, colour) in colours.iter().enumerate() {
+                    let key = (9, 4, c as u8);
+                    let pairs: Vec<[c_int; 2]> = colour
+                        .iter()
+                        .flat_map(|&i| neighbours(i as usize).into_iter().map(move |j| [i, j]))
+                        .collect();
+                    let a = k.sweep(
+                        flow,
+                        0.05,
+                        key,
+                        &pairs,
+                        reverse,
+                        &atoms,
+                        &mut listed,
+                        conservative,
+                        Some(&mut vl),
+                    );
+                    let b = k.sweep_recorded(
+                        flow,
+                        0.05,
+                        key,
+                        (colour, &record),
+                        reverse,
+                        &atoms,
+                        &mut recorded,
+                        conservative,
+                        Some(&mut vr),
+                    );
+                    assert_eq!((a, b), (DPD_LAMMPS_OK, DPD_LAMMPS_OK));
+                }
+                assert_eq!(listed, recorded, "{flow:?} reverse {reverse}");
+                assert_eq!(vl, vr, "{flow:?} reverse {reverse}");
+                assert_ne!(listed, v0);
+            }
+        }
+        let mut v = v0.clone();
+        let sweep = |colour: &[c_int], record: &PairRecord, v: &mut [f64]| {
+            k.sweep_recorded(
+                SweepFlow::Ou,
+                0.05,
+                (1, 1, 0),
+                (colour, record),
+                false,
+                &atoms,
+                v,
+                None,
+                None,
+            )
+        };
+        assert_eq!(sweep(&[n as c_int], &record, &mut v), DPD_LAMMPS_INDEX);
+        let mut other = PairRecord::default();
+        other.clear(n - 1);
+        assert_eq!(sweep(&colours[0], &other, &mut v), DPD_LAMMPS_INDEX);
+        assert_eq!(v, v0);
     }
 
     #[test]

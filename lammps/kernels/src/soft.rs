@@ -14,6 +14,7 @@
 //! included) receive its force, energy and virial halves.
 
 use crate::abi::{slice, slice_mut};
+use crate::record::PairRecord;
 use crate::{DPD_LAMMPS_INDEX, DPD_LAMMPS_NULL, DPD_LAMMPS_OK};
 use dpd_core::potential::Soft;
 use std::ffi::c_int;
@@ -80,9 +81,11 @@ impl<'a> SoftStyle<'a> {
     }
 
     /// Add the forces between atom `i` and its `neighbours` (neighbour indices as LAMMPS
-    /// stores them) to `f`, and their energy and virial to `tally`. `x` and `f` hold `3 n`
-    /// doubles, `types` `n` values. Returns `DPD_LAMMPS_INDEX` (nothing added for this atom's
-    /// remaining pairs) for an atom index or type out of range.
+    /// stores them) to `f`, and their energy and virial to `tally`; with `record` (cleared for
+    /// `n` atoms), add the pairs within the cutoff to it. `x` and `f` hold `3 n` doubles,
+    /// `types` `n` values. Returns `DPD_LAMMPS_INDEX` (nothing added for this atom's remaining
+    /// pairs) for an atom index or type out of range.
+    #[allow(clippy::too_many_arguments)]
     pub fn atom(
         &self,
         i: usize,
@@ -91,6 +94,7 @@ impl<'a> SoftStyle<'a> {
         types: &[c_int],
         f: &mut [f64],
         tally: &mut Tally,
+        mut record: Option<&mut PairRecord>,
     ) -> c_int {
         let n = types.len();
         let Some(ti) = self.type_of(types, i) else {
@@ -101,6 +105,9 @@ impl<'a> SoftStyle<'a> {
         }
         let xi = [x[3 * i], x[3 * i + 1], x[3 * i + 2]];
         let mut fi = [0.0; 3];
+        if let Some(record) = record.as_deref_mut() {
+            record.begin(i);
+        }
         for &packed in neighbours {
             let factor = self.special[(packed >> SBBITS & 3) as usize];
             let j = (packed & NEIGHMASK) as usize;
@@ -115,6 +122,9 @@ impl<'a> SoftStyle<'a> {
                 continue;
             }
             let r = r2.sqrt();
+            if let Some(record) = record.as_deref_mut() {
+                record.push(i, j, d, r, r2);
+            }
             let w = 1.0 - r / rc;
             let soft = Soft::new(self.a[pair], rc);
             // The force on i is `fpair d`, on j `-fpair d`.
@@ -158,12 +168,15 @@ impl<'a> SoftStyle<'a> {
 /// doubles, `types` `nall` ints. `energy` and `virial` (6 doubles) are null or totals to add to,
 /// `eatom` (`nall` doubles) and `vatom` (`6 nall`) null or per-atom tallies to add to. Returns
 /// `DPD_LAMMPS_OK`, `DPD_LAMMPS_NULL` for a null array that is needed, or `DPD_LAMMPS_INDEX`
-/// for an atom index or type out of range (forces then partly added).
+/// for an atom index or type out of range (forces then partly added). `record` is null, or a
+/// [`PairRecord`] that is cleared and given the pairs within the cutoff with their geometry,
+/// for the sweeps that follow at these positions.
 ///
 /// # Safety
 /// Every non-null pointer points to as many valid values as said above (`firstneigh[i]` to
 /// `numneigh[i]` ints for each listed `i`; `ilist`, and `numneigh` and `firstneigh` indexed by
-/// the values of `ilist`, must be valid for those reads); the written arrays overlap no other.
+/// the values of `ilist`, must be valid for those reads); the written arrays overlap no other;
+/// `record` is null or comes from `dpd_lammps_record_new`.
 #[no_mangle]
 pub unsafe extern "C" fn dpd_lammps_soft_forces(
     ntypes: c_int,
@@ -182,6 +195,7 @@ pub unsafe extern "C" fn dpd_lammps_soft_forces(
     virial: *mut f64,
     eatom: *mut f64,
     vatom: *mut f64,
+    record: *mut PairRecord,
 ) -> c_int {
     let (Ok(ntypes), Ok(inum), Ok(nall)) = (
         usize::try_from(ntypes),
@@ -230,6 +244,11 @@ pub unsafe extern "C" fn dpd_lammps_soft_forces(
             },
         }
     };
+    // SAFETY: the contract: null or a record of `dpd_lammps_record_new`, overlapping nothing.
+    let mut record = unsafe { record.as_mut() };
+    if let Some(record) = record.as_deref_mut() {
+        record.clear(nall);
+    }
     for &i in ilist {
         let Ok(i) = usize::try_from(i) else {
             return DPD_LAMMPS_INDEX;
@@ -246,7 +265,15 @@ pub unsafe extern "C" fn dpd_lammps_soft_forces(
         let Some(neighbours) = neighbours else {
             return DPD_LAMMPS_NULL;
         };
-        let status = style.atom(i, neighbours, x, types, f, &mut tally);
+        let status = style.atom(
+            i,
+            neighbours,
+            x,
+            types,
+            f,
+            &mut tally,
+            record.as_deref_mut(),
+        );
         if status != DPD_LAMMPS_OK {
             return status;
         }
@@ -297,10 +324,10 @@ mod tests {
         };
         let neighbours = [1, 2 | 1 << SBBITS];
         assert_eq!(
-            style.atom(0, &neighbours, &x, &types, &mut f, &mut tally),
+            style.atom(0, &neighbours, &x, &types, &mut f, &mut tally, None),
             0
         );
-        assert_eq!(style.atom(1, &[2], &x, &types, &mut f, &mut tally), 0);
+        assert_eq!(style.atom(1, &[2], &x, &types, &mut f, &mut tally, None), 0);
         // Pair (0, 1): r = 0.5, r_c = 0.8, a = 40: force 40 (1 - 0.5/0.8) = 15 pushing 0 away
         // from 1 along -(0.6, 0.8); energy 40 * 0.8 / 2 * 0.375^2 = 2.25.
         // Pair (0, 2): r = 0.9, r_c = 1, a = 25, factor 0.5: force 0.5 * 2.5 = 1.25 along -z;
@@ -332,12 +359,12 @@ mod tests {
         let mut f = vec![0.0; 9];
         let mut tally = Tally::default();
         assert_eq!(
-            style.atom(0, &[3], &x, &types, &mut f, &mut tally),
+            style.atom(0, &[3], &x, &types, &mut f, &mut tally, None),
             DPD_LAMMPS_INDEX
         );
         types[2] = 3;
         assert_eq!(
-            style.atom(0, &[2], &x, &types, &mut f, &mut tally),
+            style.atom(0, &[2], &x, &types, &mut f, &mut tally, None),
             DPD_LAMMPS_INDEX
         );
         assert!(SoftStyle::new(3, &a, &rc, [1.0; 4]).is_none());
@@ -373,14 +400,15 @@ mod tests {
                 std::ptr::null_mut(),
                 std::ptr::null_mut(),
                 std::ptr::null_mut(),
+                std::ptr::null_mut(),
             )
         };
         assert_eq!(call(&mut f, &mut energy, x.as_ptr()), DPD_LAMMPS_OK);
         let style = SoftStyle::new(2, &a, &rc, special).unwrap();
         let mut g = vec![0.0; 9];
         let mut tally = Tally::default();
-        style.atom(0, &n0, &x, &types, &mut g, &mut tally);
-        style.atom(1, &n1, &x, &types, &mut g, &mut tally);
+        style.atom(0, &n0, &x, &types, &mut g, &mut tally, None);
+        style.atom(1, &n1, &x, &types, &mut g, &mut tally, None);
         assert_eq!(f, g);
         assert!((energy - (2.25 + 0.125)).abs() < 1e-12, "{energy}");
         assert_eq!(
