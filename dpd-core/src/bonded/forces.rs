@@ -234,18 +234,11 @@ mod tests {
         Frame { q, bx, shear: None }
     }
 
-    /// The bonded energy with particle `i` moved by `h` along axis `c`.
-    fn energy_moved(
-        located: &Located,
-        bx: &PeriodicBox,
-        q: &[Vec3],
-        i: usize,
-        c: usize,
-        h: f64,
-    ) -> f64 {
-        let mut q = q.to_vec();
+    /// The bonded energy at `at` with particle `i` moved by `h` along axis `c`.
+    fn energy_moved(located: &Located, at: Frame, i: usize, c: usize, h: f64) -> f64 {
+        let mut q = at.q.to_vec();
         q[i][c] += h;
-        located.sums(frame(&q, bx)).energy
+        located.sums(Frame { q: &q, ..at }).energy
     }
 
     /// Five beads straddling the corner of a small periodic box (so that bond vectors need
@@ -287,27 +280,37 @@ mod tests {
 
     /// Every force component is minus the derivative of the energy, by central differences
     /// with step 1e-6 (truncation error ~1e-12 times the third derivative, rounding ~1e-10):
-    /// agreement to 1e-6 relative to the largest force. The forces sum to zero to rounding.
+    /// agreement to 1e-6 relative to the largest force, in the periodic box and across
+    /// Lees-Edwards boundaries slid by a third of the box. The forces sum to zero to rounding.
     #[test]
     fn forces_are_minus_the_gradient_of_the_energy() {
         let (located, bx, q) = set_up();
-        let mut f = Vec::new();
-        assert_eq!(located.forces(frame(&q, &bx), &mut f), None);
-        let scale = f.iter().map(|f: &Vec3| f.amax()).fold(0.0, f64::max);
-        assert!(scale > 1.0, "{scale}");
-        let h = 1e-6;
-        for (i, f) in f.iter().enumerate() {
-            for (c, &f) in f.iter().enumerate() {
-                let moved = |s| energy_moved(&located, &bx, &q, i, c, s * h);
-                let numeric = -(moved(1.0) - moved(-1.0)) / (2.0 * h);
-                assert!(
-                    (numeric - f).abs() < 1e-6 * scale,
-                    "particle {i} axis {c}: {numeric} vs {f}"
-                );
+        let mut sheared = LeesEdwards::new(0.5).unwrap();
+        sheared.advance(&bx, 2.0 / 3.5);
+        for shear in [None, Some(&sheared)] {
+            let at = Frame {
+                q: &q,
+                bx: &bx,
+                shear,
+            };
+            let mut f = Vec::new();
+            assert_eq!(located.forces(at, &mut f), None);
+            let scale = f.iter().map(|f: &Vec3| f.amax()).fold(0.0, f64::max);
+            assert!(scale > 1.0, "{scale}");
+            let h = 1e-6;
+            for (i, f) in f.iter().enumerate() {
+                for (c, &f) in f.iter().enumerate() {
+                    let moved = |s| energy_moved(&located, at, i, c, s * h);
+                    let numeric = -(moved(1.0) - moved(-1.0)) / (2.0 * h);
+                    assert!(
+                        (numeric - f).abs() < 1e-6 * scale,
+                        "{shear:?}: particle {i} axis {c}: {numeric} vs {f}"
+                    );
+                }
             }
+            let total: Vec3 = f.iter().sum();
+            assert!(total.amax() < 1e-13 * scale, "{total:?}");
         }
-        let total: Vec3 = f.iter().sum();
-        assert!(total.amax() < 1e-13 * scale, "{total:?}");
     }
 
     /// The Laplacian sum is the trace of the energy's Hessian, by central second differences
@@ -323,7 +326,7 @@ mod tests {
         let mut trace = 0.0;
         for i in 0..q.len() {
             for c in 0..3 {
-                let moved = |s| energy_moved(&located, &bx, &q, i, c, s * h);
+                let moved = |s| energy_moved(&located, frame(&q, &bx), i, c, s * h);
                 trace += (moved(1.0) + moved(-1.0) - 2.0 * u) / (h * h);
             }
         }
