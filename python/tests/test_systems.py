@@ -359,3 +359,25 @@ def test_write_data_starts_the_same_system(tmp_path):
         dpd.Simulation(write_data="x.data")  # type: ignore[call-arg]
     with pytest.raises(FileNotFoundError, match="missing"):
         sim.write_data(tmp_path / "missing" / "x.data")
+
+
+def test_checkpoints_and_gsd_frames_keep_the_chains(tmp_path):
+    # A checkpoint holds the topology: loaded into a simulation without bonds, it brings the
+    # same bonds, angles and chains and continues bit for bit. A melt's GSD frame restarts it
+    # with the scene's [[molecules]] (the frame's bonds must be theirs, docs/systems.md): the
+    # same bonds, types and positions (GSD stores them in single precision).
+    sim = _melt(n=60, seed=8, threads=1)
+    sim.run(steps=10)
+    sim.save_checkpoint(tmp_path / "melt.ckpt")
+    other = dpd.Simulation(n=60, threads=1)
+    other.load_checkpoint(tmp_path / "melt.ckpt")
+    assert np.array_equal(other.bonds, sim.bonds) and np.array_equal(other.angles, sim.angles)
+    assert [c.tolist() for c in other.chains] == [c.tolist() for c in sim.chains]
+    sim.run(steps=10)
+    other.run(steps=10)
+    assert np.array_equal(other.positions, sim.positions)
+    sim.trajectory(tmp_path / "melt.gsd", every=1.0)
+    sim.trajectory(None)
+    again = _melt(n=60, init=str(tmp_path / "melt.gsd"), threads=1)
+    assert np.array_equal(again.bonds, sim.bonds) and np.array_equal(again.typeid, sim.typeid)
+    assert np.allclose(again.positions, sim.positions, rtol=0, atol=1e-5)
