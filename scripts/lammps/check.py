@@ -149,10 +149,14 @@ def mean_and_error(values, blocks=20):
     return m, math.sqrt(var / blocks)
 
 
-def dpd_run(args, scheme, dt, time, runs, gamma=GAMMA, keys=("kinetic_temperature", "pressure")):
-    """`dpd run` on the standard scene: mean and standard error over `runs` independent runs
-    of T_K and pressure, or the JSON fields `keys` (each run averages the last 80 % of `time`)."""
-    cmd = [args.dpd, "run", "--scheme", scheme, "--gamma", str(gamma), "--n", str(N),
+def dpd_run(args, scheme, dt, time, runs, gamma=GAMMA, keys=("kinetic_temperature", "pressure"),
+            scene=None):
+    """`dpd run` on the standard scene (or on `scene`, a list of its flags): mean and standard
+    error over `runs` independent runs of T_K and pressure, or of the per-run JSON fields `keys`
+    (a path through nested objects as "chains/bond_length"; each run averages the last 80 % of
+    `time`)."""
+    where = scene or ["--gamma", str(gamma), "--n", str(N)]
+    cmd = [args.dpd, "run", "--scheme", scheme, *where,
            "--dt", str(dt), "--time", str(time), "--runs", str(runs), "--json"]
     out = subprocess.run(cmd, capture_output=True, text=True, timeout=900)
     if out.returncode != 0:
@@ -160,7 +164,11 @@ def dpd_run(args, scheme, dt, time, runs, gamma=GAMMA, keys=("kinetic_temperatur
     results = json.loads(out.stdout)["results"]
     stats = []
     for key in keys:
-        values = [r[key] for r in results]
+        values = []
+        for r in results:
+            for part in key.split("/"):
+                r = r[part]
+            values.append(r)
         m = sum(values) / len(values)
         var = sum((x - m) ** 2 for x in values) / (len(values) - 1)
         stats.append((m, math.sqrt(var / len(values))))
@@ -616,9 +624,11 @@ def tally(args):
     check(z > SIGMAS, f"  ... and differs from dpd run aboba's (end of step) {ends[0]:.4f} by {z:.1f} sigma")
 
 
-def melt_data(path, chains=45, beads=10, bond=0.7, seed=11):
+def melt_data(path, chains=45, beads=10, bond=0.7, seed=11, coeffs=""):
     """A LAMMPS data file (atom_style bond) of `chains` linear chains of `beads` beads at density
-    3: random walks of steps `bond` from random starts, unwrapped (read_data wraps them)."""
+    3: random walks of steps `bond` from random starts, unwrapped (read_data wraps them);
+    `coeffs`, coefficient sections written after the masses (for `dpd run --init`: LAMMPS wants
+    its styles defined before it reads them)."""
     import random
     rng = random.Random(seed)
     n = chains * beads
@@ -635,7 +645,7 @@ def melt_data(path, chains=45, beads=10, bond=0.7, seed=11):
             atoms.append((c + 1, x))
     with open(path, "w") as f:
         f.write(f"bead-spring melt\n\n{n} atoms\n{len(bonds)} bonds\n1 atom types\n1 bond types\n\n"
-                f"0 {side!r} xlo xhi\n0 {side!r} ylo yhi\n0 {side!r} zlo zhi\n\nMasses\n\n1 1.0\n\nAtoms # bond\n\n")
+                f"0 {side!r} xlo xhi\n0 {side!r} ylo yhi\n0 {side!r} zlo zhi\n\nMasses\n\n1 1.0\n\n{coeffs}Atoms # bond\n\n")
         for k, (mol, x) in enumerate(atoms):
             f.write(f"{k + 1} {mol} 1 {x[0]!r} {x[1]!r} {x[2]!r}\n")
         f.write("\nBonds\n\n")
@@ -644,10 +654,10 @@ def melt_data(path, chains=45, beads=10, bond=0.7, seed=11):
     return n
 
 
-# The melt: harmonic bonds K = 50 (LAMMPS's E = K (r - r0)^2, so 100 in the convention with
-# 1/2) and r0 = 0.7, the stiff-bond melt of docs/systems.md; bonded beads keep their soft
-# repulsion (special_bonds lj 1 1 1, the DPD convention).
-MELT_BOND = "bond_style harmonic\nbond_coeff 1 50.0 0.7"
+# The melt: scenes/melt-stiff.toml's harmonic bonds, K = 100 in LAMMPS's E = K (r - r0)^2 and
+# r0 = 0.7; bonded beads keep their soft repulsion (special_bonds lj 1 1 1, the DPD convention).
+MELT_K, MELT_R0 = 100.0, 0.7
+MELT_BOND = f"bond_style harmonic\nbond_coeff 1 {MELT_K} {MELT_R0}"
 
 
 def melt_input(args, integrator, steps, dt, thermo, seed=2024, extra=""):
@@ -686,11 +696,17 @@ def melt(args):
       applied the pair forces, or inner kicks of the wrong length, moves the bond length by
       many errors;
     - SAS with the bonds on B[bond] (T beside B[bond]) against the same;
+    - `dpd run` (VV and ABOBA, its own engine) from the same chains and coefficients, read from
+      a LAMMPS data file, against the same (pressure: the virial of the conservative and bond
+      forces, whose friction and noise parts average to zero at equilibrium);
     - the r-RESPA splitting with inner count 1, O(1/2) B[pair](1/2) (B[bond](1/2) A
       B[bond](1/2))^1 B[pair](1/2) O(1/2), repeats OBABO bitwise (200 steps, 17 digits);
     - refusals: B[bond] without bonded styles, a force-adding fix beside a grouped scheme, and T
       with bonds in a scheme without B[bond], each named."""
-    melt_data(os.path.join(args.work, "melt.data"))
+    n = melt_data(os.path.join(args.work, "melt.data"))
+    mine = os.path.join(args.work, "melt-dpd.data")
+    melt_data(mine, coeffs=f"PairIJ Coeffs # dpd\n\n1 1 25.0 {GAMMA} 1.0\n\n"
+                           f"Bond Coeffs # harmonic\n\n1 {MELT_K} {MELT_R0}\n\n")
     dt, equil, steps = 0.01, 500, 6000
     soft = "pair_style dpd/soft 1.0\npair_coeff 1 1 25.0\n" + MELT_BOND + "\n"
     runs = {
@@ -710,6 +726,15 @@ def melt(args):
             check(False, f"melt, {name} ran: {out[-2000:]}")
             return
         results[name] = [mean_and_error([r[c] for r in rows]) for c in (3, 2)]
+        print(f"     melt dt={dt}: {name}: bond length {results[name][0][0]:.5f} +- {results[name][0][1]:.5f}, "
+              f"pressure {results[name][1][0]:.4f} +- {results[name][1][1]:.4f}", flush=True)
+    # `dpd run` from the same chains: each run averages its last 80 %, the errors from the spread
+    # of the runs' means.
+    for scheme in ("vv", "aboba"):
+        name = f"dpd run {scheme}"
+        results[name] = dpd_run(args, scheme, dt, dt * (equil + steps), args.dpd_runs,
+                                keys=("chains/bond_length", "pressure"),
+                                scene=["--init", mine, "--n", str(n)])
         print(f"     melt dt={dt}: {name}: bond length {results[name][0][0]:.5f} +- {results[name][0][1]:.5f}, "
               f"pressure {results[name][1][0]:.4f} +- {results[name][1][1]:.4f}", flush=True)
     ref = results.pop("LAMMPS pair dpd + fix nve")
