@@ -278,7 +278,7 @@ fn outputs() -> BTreeMap<&'static str, Vec<Value>> {
             "{tiny}like_neighbours = true\n[rdf]\nr_max = 1.5\nbins = 5\n[profile]\nbins = 2\n\
              [[species]]\nname = \"A\"\nfraction = 0.5\nmass = 2.0\n[[species]]\n\
              name = \"B\"\nfraction = 0.5\n[pairs]\nA-A = {{ a = 25.0 }}\n\
-             B-B = {{ a = 25.0 }}\nA-B = {{ a = 40.0 }}\n"
+             B-B = {{ a = 25.0 }}\nA-B = {{ a = 40.0, gamma = 9.0, rc = 0.9 }}\n"
         ),
     );
     let melt = write(

@@ -145,8 +145,22 @@ fn a_data_file_written_by_a_run_starts_the_next() {
         "hot.data",
         &text.replace("1 1 25 4.5 1", "1 1 25 9 1"),
     );
-    let out = dpd(dir.path(), &["run", "--scene", &scene, "--init", &hot]);
-    refused(&out, "invalid init: Pair Coeffs 1 1 = gamma 9");
+    // The file's friction is the system's: written again as it was read.
+    let again = [
+        "run",
+        "--scene",
+        &scene,
+        "--init",
+        &hot,
+        "--write-data",
+        "again.data",
+    ];
+    json(&dpd(dir.path(), &[&again[..], &["--json"]].concat()));
+    let text = std::fs::read_to_string(dir.path().join("again.data")).unwrap();
+    assert!(
+        text.contains("PairIJ Coeffs # dpd\n\n1 1 25 9 1\n"),
+        "{text}"
+    );
     let out = dpd(
         dir.path(),
         &["run", "--scene", &scene, "--write-data", "end.gsd"],

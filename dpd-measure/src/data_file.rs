@@ -4,6 +4,7 @@
 //! box `[lo, hi)` per axis, types and ids from 1. The file format is `dpd_trajectory`'s.
 
 use crate::data_bonds::write_topology;
+use crate::pair_coefficients::PairCoefficients;
 use dpd_core::{ParamError, System};
 use dpd_trajectory::lammps_data::{Atom, AtomStyle, Coeffs, DataFile};
 use dpd_trajectory::Frame;
@@ -55,10 +56,10 @@ pub fn frame_of(data: &DataFile) -> Result<Frame, String> {
     })
 }
 
-/// The repulsions `a[i][j]` of the file's `pair_style dpd` coefficients (`None` without
-/// them). Every pair of types needs its coefficients (pair dpd does not mix), every gamma must
-/// be the scene's `gamma` and every cut-off 1 (one friction and one cut-off for all pairs).
-pub fn repulsions(data: &DataFile, gamma: f64) -> Result<Option<Vec<Vec<f64>>>, ParamError> {
+/// The file's `pair_style dpd` coefficients `A gamma [cutoff]` of every pair of types
+/// (`None` without them; a missing cutoff is 1). Every pair of types needs its coefficients
+/// (pair dpd does not mix); a cutoff must be in (0, 1], the largest, which sizes the cells.
+pub fn pair_coefficients(data: &DataFile) -> Result<Option<PairCoefficients>, ParamError> {
     let coeffs = &data.pair_coeffs;
     if coeffs.by_type.is_empty() {
         return Ok(None);
@@ -71,7 +72,11 @@ pub fn repulsions(data: &DataFile, gamma: f64) -> Result<Option<Vec<Vec<f64>>>, 
         ));
     }
     let t = data.atom_types as usize;
-    let mut a = vec![vec![0.0; t]; t];
+    let mut matrices = [
+        vec![vec![0.0; t]; t],
+        vec![vec![0.0; t]; t],
+        vec![vec![1.0; t]; t],
+    ];
     for i in 1..=data.atom_types {
         for j in i..=data.atom_types {
             let key = format!("init: Pair Coeffs {i} {j}");
@@ -82,60 +87,53 @@ pub fn repulsions(data: &DataFile, gamma: f64) -> Result<Option<Vec<Vec<f64>>>, 
                     "pair dpd needs the coefficients of every pair of types (PairIJ Coeffs)",
                 )
             })?;
-            if !(2..=3).contains(&c.len()) {
+            let valid = (2..=3).contains(&c.len())
+                && c[0] >= 0.0
+                && c[1] >= 0.0
+                && c.get(2).is_none_or(|&rc| rc > 0.0 && rc <= 1.0);
+            if !valid {
                 return Err(ParamError::new(
                     &key,
                     format!("{c:?}"),
-                    "must be A gamma [cutoff]",
+                    "must be A >= 0, gamma >= 0 [and a cutoff in (0, 1]: the largest, 1, sizes \
+                     the cells]",
                 ));
             }
-            if c[1] != gamma {
-                return Err(ParamError::new(
-                    &key,
-                    format!("gamma {}", c[1]),
-                    format!(
-                        "must be the scene's gamma = {gamma} (one friction for all pairs): \
-                         set gamma = {} in the scene",
-                        c[1]
-                    ),
-                ));
+            for (m, &v) in matrices.iter_mut().zip(c) {
+                m[i as usize - 1][j as usize - 1] = v;
+                m[j as usize - 1][i as usize - 1] = v;
             }
-            if c.len() == 3 && c[2] != 1.0 {
-                return Err(ParamError::new(
-                    &key,
-                    format!("cutoff {}", c[2]),
-                    "must be 1 (r_c)",
-                ));
-            }
-            a[i as usize - 1][j as usize - 1] = c[0];
-            a[j as usize - 1][i as usize - 1] = c[0];
         }
     }
-    Ok(Some(a))
+    let [a, gamma, rc] = matrices;
+    Ok(Some(PairCoefficients { a, gamma, rc }))
 }
 
-/// Checks that a data file's repulsions `file` are the scene's `scene` (types named `names`);
-/// the error names the first pair that differs.
-pub fn same_repulsions(
-    file: &[Vec<f64>],
-    scene: &[Vec<f64>],
+/// Checks that a data file's pair coefficients `file` are the scene's `scene` (types named
+/// `names`); the error names the first pair that differs.
+pub fn same_coefficients(
+    file: &PairCoefficients,
+    scene: &PairCoefficients,
     names: &[String],
 ) -> Result<(), ParamError> {
-    for (i, row) in file.iter().enumerate() {
-        for (j, &a) in row.iter().enumerate().skip(i) {
-            if a != scene[i][j] {
-                return Err(ParamError::new(
-                    format!("init: Pair Coeffs {} {}", i + 1, j + 1),
-                    format!("A {a}"),
-                    format!(
-                        "must be the scene's a of {}-{} = {} (or leave the pairs to one of them)",
-                        names[i], names[j], scene[i][j]
-                    ),
-                ));
-            }
-        }
+    match file.first_difference(scene) {
+        None => Ok(()),
+        Some((i, j)) => Err(ParamError::new(
+            format!("init: Pair Coeffs {} {}", i + 1, j + 1),
+            format!("A gamma cutoff = {}", spaced(file.of(i, j))),
+            format!(
+                "must be the scene's {}-{} = {} (or leave the pairs to one of them)",
+                names[i],
+                names[j],
+                spaced(scene.of(i, j))
+            ),
+        )),
     }
-    Ok(())
+}
+
+/// Numbers separated by spaces, as a data file's line has them.
+fn spaced(values: [f64; 3]) -> String {
+    values.map(|v| v.to_string()).join(" ")
 }
 
 /// The state of `sys` as a data file of atom style atomic, particles by id (atom id = id + 1),
@@ -175,10 +173,11 @@ pub fn data_of(sys: &System, names: &[String], title: &str) -> Result<DataFile, 
     let mut by_type = BTreeMap::new();
     for i in 0..types {
         for j in i..types {
-            let a = params.a(i as u16, j as u16);
+            let (ti, tj) = (i as u16, j as u16);
+            let (gamma, _) = params.friction(ti, tj);
             by_type.insert(
                 (i as u32 + 1, j as u32 + 1),
-                vec![a, params.gamma(), params.rc()],
+                vec![params.a(ti, tj), gamma, params.rc_of(ti, tj)],
             );
         }
     }
@@ -218,10 +217,12 @@ mod tests {
                            [pairs]\nA-A = { a = 25.0 }\nB-B = { a = 30.0 }\nA-B = { a = 40.0 }\n";
 
     /// A mixture written as a data file and started from it is the same system: positions,
-    /// types, masses and repulsions exactly, velocities to rounding (written as p / m).
+    /// types, masses and pair coefficients (a pair's own friction and cut-off too) exactly,
+    /// velocities to rounding (written as p / m).
     #[test]
     fn a_system_written_as_a_data_file_starts_again_from_it() {
-        let scene = Scene::from_toml(MIXTURE, "t").unwrap();
+        let own = "A-B = { a = 40.0, gamma = 9.0, rc = 0.8 }";
+        let scene = Scene::from_toml(&MIXTURE.replace("A-B = { a = 40.0 }", own), "t").unwrap();
         let mut sys = scene.system(0.05, 3).unwrap();
         let aboba = dpd_schemes::registry::resolve("aboba").unwrap();
         sys.advance(aboba.as_ref(), 20).unwrap();
@@ -258,29 +259,41 @@ mod tests {
             );
         }
         for (i, j) in [(0, 0), (0, 1), (1, 1)] {
-            assert_eq!(copy.params().a(i, j), sys.params().a(i, j));
+            let (p, q) = (copy.params(), sys.params());
+            assert_eq!(p.a(i, j), q.a(i, j));
+            assert_eq!(p.friction(i, j), q.friction(i, j));
+            assert_eq!(p.rc_of(i, j), q.rc_of(i, j));
         }
+        assert_eq!(copy.params().friction(0, 1).0, 9.0);
+        assert_eq!(copy.params().rc_of(0, 1), 0.8);
     }
 
     #[test]
-    fn pair_coefficients_the_engine_cannot_hold_are_named() {
+    fn per_pair_friction_and_cutoff_are_read_and_bad_coefficients_named() {
         let scene = Scene::from_toml(MIXTURE, "t").unwrap();
         let data = data_of(&scene.system(0.05, 3).unwrap(), &scene.type_names(2), "t").unwrap();
-        let with = |pair: (u32, u32), c: Vec<f64>| {
+        let with = |pairs: &[((u32, u32), Vec<f64>)]| {
             let mut d = data.clone();
-            d.pair_coeffs.by_type.insert(pair, c);
-            repulsions(&d, 4.5).unwrap_err().to_string()
+            for (pair, c) in pairs {
+                d.pair_coeffs.by_type.insert(*pair, c.clone());
+            }
+            pair_coefficients(&d)
         };
-        let e = with((1, 2), vec![40.0, 9.0]);
-        assert!(
-            e.contains("Pair Coeffs 1 2 = gamma 9") && e.contains("gamma = 9"),
-            "{e}"
-        );
-        let e = with((2, 2), vec![25.0, 4.5, 0.8]);
-        assert!(e.contains("Pair Coeffs 2 2 = cutoff 0.8"), "{e}");
+        let c = with(&[((1, 2), vec![40.0, 9.0]), ((2, 2), vec![25.0, 4.5, 0.8])])
+            .unwrap()
+            .unwrap();
+        assert_eq!(c.gamma, [[4.5, 9.0], [9.0, 4.5]]);
+        assert_eq!(c.rc, [[1.0, 1.0], [1.0, 0.8]]);
+        let e = with(&[((2, 2), vec![25.0, 4.5, 1.5])])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("Pair Coeffs 2 2 = [25.0, 4.5, 1.5]"), "{e}");
+        assert!(e.contains("cutoff in (0, 1]"), "{e}");
+        let e = with(&[((1, 1), vec![25.0, -1.0])]).unwrap_err().to_string();
+        assert!(e.contains("Pair Coeffs 1 1 = [25.0, -1.0]"), "{e}");
         let mut missing = data.clone();
         missing.pair_coeffs.by_type.remove(&(1, 2));
-        let e = repulsions(&missing, 4.5).unwrap_err().to_string();
+        let e = pair_coefficients(&missing).unwrap_err().to_string();
         assert!(e.contains("invalid init: Pair Coeffs 1 2 = missing"), "{e}");
         // The mixture starts from its own file; with other repulsions the pair is named.
         let dir = tempfile::tempdir().unwrap();
@@ -292,7 +305,9 @@ mod tests {
         let other = Scene::from_toml(&(init + &MIXTURE.replace("40.0", "41.0")), "t").unwrap();
         let e = other.system(0.05, 3).unwrap_err().to_string();
         assert!(
-            e.contains("Pair Coeffs 1 2 = A 40: must be the scene's a of A-B = 41"),
+            e.contains(
+                "Pair Coeffs 1 2 = A gamma cutoff = 40 4.5 1: must be the scene's A-B = 41 4.5 1"
+            ),
             "{e}"
         );
         let mut renamed = data.clone();

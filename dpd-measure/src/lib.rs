@@ -21,6 +21,7 @@ pub mod data_file;
 pub mod images;
 pub mod kl;
 pub mod observer;
+pub mod pair_coefficients;
 pub mod paper;
 pub mod plot;
 pub mod report;

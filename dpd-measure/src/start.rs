@@ -3,7 +3,8 @@
 //! and where their trajectories' counters start.
 
 use crate::data_bonds::topology_of;
-use crate::data_file::{frame_of, repulsions};
+use crate::data_file::{frame_of, pair_coefficients};
+use crate::pair_coefficients::PairCoefficients;
 use dpd_core::{ParamError, Topology, Vec3};
 use dpd_trajectory::gsd::GsdReader;
 use dpd_trajectory::lammps_data::DataFile;
@@ -18,11 +19,11 @@ pub struct InitSpec {
     pub frame: Option<u64>,
 }
 
-/// What a run starts from: a frame, and the repulsions a_ij of a data file's pair
-/// coefficients and its bonds and angles.
+/// What a run starts from: a frame, and a data file's pair coefficients and its bonds and
+/// angles.
 pub struct Start {
     pub frame: Frame,
-    pub repulsions: Option<Vec<Vec<f64>>>,
+    pub coefficients: Option<PairCoefficients>,
     pub topology: Option<Topology>,
 }
 
@@ -57,21 +58,19 @@ impl InitSpec {
     }
 
     /// The start, checked against the scene's particle count, box and type names (`names`,
-    /// empty without species); a data file's pair coefficients are checked against the
-    /// scene's `gamma`.
+    /// empty without species).
     pub fn read(
         &self,
         n: usize,
         box_lengths: [f64; 3],
         names: &[String],
-        gamma: f64,
     ) -> Result<Start, ParamError> {
         let bad = |message: String| ParamError::new("init", self.file.display(), message);
         let (k, start) = match self.file.extension().and_then(|e| e.to_str()) {
             Some("data") => {
                 let data = DataFile::read(&self.file).map_err(|e| bad(e.to_string()))?;
                 let frame = frame_of(&data).map_err(bad)?;
-                let repulsions = repulsions(&data, gamma)?;
+                let coefficients = pair_coefficients(&data)?;
                 let types = data.atom_types as usize;
                 if !names.is_empty() && types != names.len() {
                     return Err(bad(format!(
@@ -90,7 +89,7 @@ impl InitSpec {
                 let topology = topology_of(&data)?;
                 let start = Start {
                     frame,
-                    repulsions,
+                    coefficients,
                     topology,
                 };
                 ("the file".to_string(), start)
@@ -104,11 +103,10 @@ impl InitSpec {
                         format!("must be the scene's species, {names:?}, in their order"),
                     ));
                 }
-                let (repulsions, topology) = (None, None);
                 let start = Start {
                     frame,
-                    repulsions,
-                    topology,
+                    coefficients: None,
+                    topology: None,
                 };
                 (format!("frame {k}"), start)
             }

@@ -4,7 +4,7 @@
 use super::molecules::{ChainPlan, Context};
 use super::{check, Scene};
 use crate::chains;
-use crate::data_file::same_repulsions;
+use crate::data_file::same_coefficients;
 use crate::start::{initial_state, InitSpec, Origin};
 use dpd_core::bonded::{Topology, TopologyBuilder};
 use dpd_core::init::{freeze_outside, maxwell_momenta, uniform_positions};
@@ -26,11 +26,12 @@ impl Scene {
         let (state, params, topology) = match &geometry.init {
             Some(init) => {
                 let lengths = bx.lengths().into();
-                let start = InitSpec::parse(init)?.read(n, lengths, &names, physics.gamma)?;
-                let params = match (start.repulsions, &self.species.species) {
-                    (Some(a), None) => physics.builder().a_matrix(a).build()?,
-                    (Some(a), Some(_)) => {
-                        same_repulsions(&a, &self.species.a_matrix()?, &names)?;
+                let start = InitSpec::parse(init)?.read(n, lengths, &names)?;
+                let params = match (start.coefficients, &self.species.species) {
+                    (Some(c), None) => c.apply(physics.builder()).build()?,
+                    (Some(c), Some(_)) => {
+                        let scene = self.species.coefficients(physics.gamma)?;
+                        same_coefficients(&c, &scene, &names)?;
                         self.params()?
                     }
                     (None, _) => self.params()?,
@@ -180,13 +181,13 @@ impl Scene {
         }
     }
 
-    /// The pair-force parameters: the physics section's, with the species' repulsions.
+    /// The pair-force parameters: the physics section's, with the species' pair coefficients.
     pub fn params(&self) -> Result<Params, ParamError> {
         match self.species.species {
             Some(_) => self
-                .physics
-                .builder()
-                .a_matrix(self.species.a_matrix()?)
+                .species
+                .coefficients(self.physics.gamma)?
+                .apply(self.physics.builder())
                 .build(),
             None => self.physics.params(),
         }
@@ -217,8 +218,7 @@ impl Scene {
             Some(init) if !geometry.init_reset => {
                 let (n, lengths) = (geometry.particles(), geometry.periodic_box()?.lengths());
                 let names = self.species.names();
-                let start =
-                    InitSpec::parse(init)?.read(n, lengths.into(), &names, self.physics.gamma)?;
+                let start = InitSpec::parse(init)?.read(n, lengths.into(), &names)?;
                 Ok(Origin::of_frame(&start.frame, dt))
             }
             _ => Ok(Origin::default()),

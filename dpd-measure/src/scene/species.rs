@@ -3,6 +3,7 @@
 //! `mass`, and builds the same system as before species existed.
 
 use super::check::{non_negative, positive, require};
+use crate::pair_coefficients::PairCoefficients;
 use dpd_core::ParamError;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -39,6 +40,12 @@ pub struct TypeSpec {
 pub struct PairSpec {
     /// Conservative repulsion a_ij.
     pub a: f64,
+    /// Friction gamma_ij; default the scene's `gamma`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gamma: Option<f64>,
+    /// Cut-off r_c,ij, in (0, 1]; default 1.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rc: Option<f64>,
 }
 
 /// How far the fractions may sum from 1 (they are rounded to whole particles anyway).
@@ -91,7 +98,7 @@ impl Species {
             a == default_a,
             "is not used with [[species]]: give each pair's a in [pairs]",
         )?;
-        self.a_matrix().map(|_| ())
+        self.coefficients(0.0).map(|_| ())
     }
 
     /// The names of the types, in type-id order (none without `[[species]]`).
@@ -148,16 +155,17 @@ impl Species {
         }
     }
 
-    /// The repulsion matrix `a[i][j]` from `[pairs]`; the error names a pair given twice, a
-    /// pair naming no species, or the first pair without coefficients.
-    pub fn a_matrix(&self) -> Result<Vec<Vec<f64>>, ParamError> {
+    /// The coefficients of every pair of types from `[pairs]`, `gamma` where a pair gives no
+    /// friction and 1 where it gives no cut-off; the error names a pair given twice, a pair
+    /// naming no species, a negative coefficient or the first pair without coefficients.
+    pub fn coefficients(&self, gamma: f64) -> Result<PairCoefficients, ParamError> {
         let names = self.names();
         let t = names.len();
-        let mut a = vec![vec![None; t]; t];
+        let mut given: Vec<Vec<Option<&PairSpec>>> = vec![vec![None; t]; t];
         let empty = BTreeMap::new();
         for (key, pair) in self.pairs.as_ref().unwrap_or(&empty) {
             let (i, j) = pair_of(key, &names)?;
-            if a[i][j].is_some() {
+            if given[i][j].is_some() {
                 return Err(ParamError::new(
                     format!("pairs.{key}"),
                     pair.a,
@@ -168,12 +176,23 @@ impl Species {
                 ));
             }
             non_negative(&format!("pairs.{key}.a"), pair.a)?;
-            a[i][j] = Some(pair.a);
-            a[j][i] = Some(pair.a);
+            if let Some(g) = pair.gamma {
+                non_negative(&format!("pairs.{key}.gamma"), g)?;
+            }
+            if let Some(rc) = pair.rc {
+                require(
+                    &format!("pairs.{key}.rc"),
+                    rc,
+                    rc > 0.0 && rc <= 1.0,
+                    "must be in (0, 1]: the largest cut-off, 1, sizes the cells",
+                )?;
+            }
+            given[i][j] = Some(pair);
+            given[j][i] = Some(pair);
         }
         for i in 0..t {
             for j in i..t {
-                if a[i][j].is_none() {
+                if given[i][j].is_none() {
                     let pair = format!("{}-{}", names[i], names[j]);
                     return Err(ParamError::new(
                         format!("pairs.{pair}"),
@@ -185,9 +204,17 @@ impl Species {
                 }
             }
         }
-        Ok(a.into_iter()
-            .map(|row| row.into_iter().map(|x| x.unwrap_or_default()).collect())
-            .collect())
+        let matrix = |of: &dyn Fn(&PairSpec) -> f64| -> Vec<Vec<f64>> {
+            given
+                .iter()
+                .map(|row| row.iter().map(|p| p.map_or(0.0, of)).collect())
+                .collect()
+        };
+        Ok(PairCoefficients {
+            a: matrix(&|p| p.a),
+            gamma: matrix(&|p| p.gamma.unwrap_or(gamma)),
+            rc: matrix(&|p| p.rc.unwrap_or(1.0)),
+        })
     }
 
     /// The type of each particle, by id: the first `counts[0]` ids are type 0, and so on.
@@ -266,8 +293,16 @@ mod tests {
         assert_eq!(s.counts(10).unwrap(), [3, 7]);
         assert_eq!(s.kinds(4).unwrap(), [0, 1, 1, 1]);
         assert_eq!(s.masses(1.0), [1.0, 2.0]);
-        assert_eq!(s.a_matrix().unwrap(), [[25.0, 40.0], [40.0, 25.0]]);
+        assert_eq!(s.coefficients(4.5).unwrap().a, [[25.0, 40.0], [40.0, 25.0]]);
         assert_eq!(s.names(), ["A", "B"]);
+        // A pair's own friction and cut-off; the others take the scene's gamma and 1.
+        let own = species(&BINARY.replace(
+            "B-A = { a = 40.0 }",
+            "B-A = { a = 40.0, gamma = 9.0, rc = 0.8 }",
+        ));
+        let c = own.coefficients(4.5).unwrap();
+        assert_eq!(c.gamma, [[4.5, 9.0], [9.0, 4.5]]);
+        assert_eq!(c.rc, [[1.0, 0.8], [0.8, 1.0]]);
     }
 
     #[test]
@@ -292,6 +327,14 @@ mod tests {
             (BINARY.replace("B-B", "A-B"), "pairs.B-A"),
             (BINARY.replace("A-A", "AA"), "pairs.AA"),
             (BINARY.replace("a = 40.0", "a = -1.0"), "pairs.B-A.a"),
+            (
+                BINARY.replace("a = 40.0", "a = 40.0, gamma = -1.0"),
+                "pairs.B-A.gamma",
+            ),
+            (
+                BINARY.replace("a = 40.0", "a = 40.0, rc = 1.5"),
+                "pairs.B-A.rc",
+            ),
             (BINARY.replace("0.7", "0.6"), "species.fraction"),
             (BINARY.replace("fraction = 0.7", "count = 7"), "species[0]"),
             (counts.replace("0.7", "6"), "species.count"),
