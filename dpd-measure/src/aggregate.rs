@@ -4,6 +4,7 @@ use super::result::{RunResult, Viscosity};
 use super::scene::Observable;
 use dpd_core::observe::Running;
 use serde::Serialize;
+use std::collections::BTreeMap;
 
 /// Means over the stable runs of one (scheme, dt), with the standard error of the mean of
 /// the configurational temperature, and relative errors.
@@ -31,6 +32,13 @@ pub struct Aggregate {
     pub force_evaluations_per_step: Option<f64>,
     /// Mean diffusion coefficient, where the runs measured one.
     pub diffusion: Option<f64>,
+    /// Mean bond length in r_c, with bonds (null without).
+    pub bond_length: Option<f64>,
+    pub bond_length_stderr: Option<f64>,
+    /// Per species, the mean fraction of like neighbours within r_c, with `like_neighbours`
+    /// (null without; a species without neighbours is left out).
+    pub like_neighbours: Option<BTreeMap<String, f64>>,
+    pub like_neighbours_stderr: Option<BTreeMap<String, f64>>,
     /// Mean shear viscosity with its standard error, in a sheared scene (see
     /// [`Viscosity::combine`]).
     #[serde(flatten, skip_serializing_if = "Option::is_none")]
@@ -47,6 +55,11 @@ pub struct Aggregate {
     /// Relative to the baseline run (sweeps only).
     pub potential_energy_error: Option<f64>,
     pub pressure_error: Option<f64>,
+    /// Relative to the baseline's mean bond length (sweeps only).
+    pub bond_length_error: Option<f64>,
+    /// The like-neighbour fraction's relative error against the baseline of the species that
+    /// errs most, with its sign (sweeps only).
+    pub like_neighbours_error: Option<f64>,
     /// (eta - eta_baseline) / eta_baseline (sweeps of a sheared scene only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub shear_viscosity_relative_error: Option<f64>,
@@ -71,12 +84,65 @@ fn relative(value: Option<f64>, reference: Option<f64>) -> Option<f64> {
     (r != 0.0).then(|| (v - r) / r.abs())
 }
 
+/// Per species, `statistic` of the like-neighbour fractions of `runs`; `None` when no run
+/// measured them.
+fn per_species(
+    runs: &[&RunResult],
+    statistic: fn(std::vec::IntoIter<Option<f64>>) -> Option<f64>,
+) -> Option<BTreeMap<String, f64>> {
+    let mut values: BTreeMap<&str, Vec<Option<f64>>> = BTreeMap::new();
+    for fractions in runs.iter().filter_map(|r| r.like_neighbours.as_ref()) {
+        for (name, f) in fractions {
+            values.entry(name).or_default().push(*f);
+        }
+    }
+    (!values.is_empty()).then(|| {
+        values
+            .into_iter()
+            .filter_map(|(name, v)| Some((name.to_string(), statistic(v.into_iter())?)))
+            .collect()
+    })
+}
+
+/// The relative error of the species whose value in `values` differs most from its value in
+/// `reference`, with its sign.
+fn largest_relative(
+    values: Option<&BTreeMap<String, f64>>,
+    reference: Option<&BTreeMap<String, f64>>,
+) -> Option<f64> {
+    let (values, reference) = (values?, reference?);
+    values
+        .iter()
+        .filter_map(|(name, &v)| relative(Some(v), reference.get(name).copied()))
+        .max_by(|a, b| a.abs().total_cmp(&b.abs()))
+}
+
+/// The relative error of an observable in a row.
+pub type RelativeError = fn(&Aggregate) -> Option<f64>;
+
+/// The observables whose critical steps a sweep reports: their field name in the rows, their
+/// label in tables, and their relative error (T_K and T_C against k_B T, the others against
+/// the baseline).
+pub const CRITICAL_OBSERVABLES: [(&str, &str, RelativeError); 5] = [
+    ("kinetic_temperature", "T_K", |r| {
+        r.kinetic_temperature_error
+    }),
+    ("configurational_temperature", "T_C", |r| {
+        r.configurational_temperature_error
+    }),
+    ("potential_energy", "U", |r| r.potential_energy_error),
+    ("bond_length", "bond", |r| r.bond_length_error),
+    ("like_neighbours", "like", |r| r.like_neighbours_error),
+];
+
 impl Aggregate {
     /// Combine `runs` (all of one scheme and dt); temperatures are compared with `kbt`.
     pub fn of(runs: &[&RunResult], kbt: f64) -> Aggregate {
         let stable: Vec<_> = runs.iter().filter(|r| r.stable).copied().collect();
         let over = |f: fn(&RunResult) -> Option<f64>| mean(stable.iter().map(|r| f(r)));
         let spread = |f: fn(&RunResult) -> Option<f64>| stderr(stable.iter().map(|r| f(r)));
+        let stable_runs: &[&RunResult] = &stable;
+        let bond_length = |r: &RunResult| r.chains.as_ref().map(|c| c.bond_length);
         let kinetic_temperature = over(|r| r.kinetic_temperature);
         let configurational_temperature = over(|r| r.configurational_temperature);
         Aggregate {
@@ -97,6 +163,10 @@ impl Aggregate {
             ms_per_step: mean(runs.iter().map(|r| r.ms_per_step)),
             force_evaluations_per_step: mean(runs.iter().map(|r| r.force_evaluations_per_step)),
             diffusion: over(|r| r.diffusion),
+            bond_length: over(bond_length),
+            bond_length_stderr: spread(bond_length),
+            like_neighbours: per_species(stable_runs, mean),
+            like_neighbours_stderr: per_species(stable_runs, stderr),
             viscosity: Viscosity::combine(&runs.iter().map(|r| r.viscosity).collect::<Vec<_>>()),
             heat: over(|r| r.heat),
             shadow_work: over(|r| r.shadow_work),
@@ -104,14 +174,22 @@ impl Aggregate {
             configurational_temperature_error: relative(configurational_temperature, Some(kbt)),
             potential_energy_error: None,
             pressure_error: None,
+            bond_length_error: None,
+            like_neighbours_error: None,
             shear_viscosity_relative_error: None,
         }
     }
 
-    /// Fill the potential-energy, pressure and viscosity errors against a baseline.
+    /// Fill the potential-energy, pressure, bond-length, like-neighbour and viscosity errors
+    /// against a baseline.
     pub fn compare_with(&mut self, baseline: &Aggregate) {
         self.potential_energy_error = relative(self.potential_energy, baseline.potential_energy);
         self.pressure_error = relative(self.pressure, baseline.pressure);
+        self.bond_length_error = relative(self.bond_length, baseline.bond_length);
+        self.like_neighbours_error = largest_relative(
+            self.like_neighbours.as_ref(),
+            baseline.like_neighbours.as_ref(),
+        );
         self.shear_viscosity_relative_error =
             relative(self.shear_viscosity(), baseline.shear_viscosity());
     }
@@ -133,7 +211,12 @@ impl Aggregate {
     /// The error that decides the critical step: the signed relative error of `observable`,
     /// infinite when a run blew up or nothing was measured.
     pub fn critical_error(&self, observable: Observable) -> f64 {
-        match (self.stable, self.error_of(observable)) {
+        self.critical(self.error_of(observable))
+    }
+
+    /// `error` where every run was stable and it was measured, else infinite (a blow-up).
+    pub fn critical(&self, error: Option<f64>) -> f64 {
+        match (self.stable, error) {
             (true, Some(e)) => e,
             _ => f64::INFINITY,
         }

@@ -33,6 +33,16 @@ impl Critical {
             _ => None,
         }
     }
+
+    /// A short form for wide tables: `0.0412`, `0.0412*` (sign change), `< 0.0100`, `>
+    /// 0.2000`, `(0.0596, 0.0745]` (blow-up).
+    pub fn compact(self) -> String {
+        match self {
+            Critical::SignChange { dt, .. } => format!("{dt:.4}*"),
+            Critical::BlowUp { below, above } => format!("({below:.4}, {above:.4}]"),
+            other => other.to_string(),
+        }
+    }
 }
 
 impl fmt::Display for Critical {
@@ -139,6 +149,7 @@ mod tests {
         );
         let c = critical_dt(&curve, 0.04).unwrap();
         assert_eq!(c.to_string(), "0.1414 (sign change in (0.1000, 0.2000])");
+        assert_eq!(c.compact(), "0.1414*");
         let c = critical_dt(&curve, 0.1).unwrap();
         assert!(matches!(c, Critical::At { .. }), "{c:?}");
     }
@@ -169,13 +180,15 @@ mod tests {
     #[test]
     fn unstable_points_bracket_without_interpolation() {
         let curve = [(0.05, 0.01), (0.1, 0.05), (0.2, f64::INFINITY)];
+        let c = critical_dt(&curve, 0.1);
         assert_eq!(
-            critical_dt(&curve, 0.1),
+            c,
             Some(Critical::BlowUp {
                 below: 0.1,
                 above: 0.2
             })
         );
+        assert_eq!(c.unwrap().compact(), "(0.1000, 0.2000]");
         let nan = [(0.05, 0.01), (0.1, f64::NAN)];
         assert!(matches!(
             critical_dt(&nan, 0.1),

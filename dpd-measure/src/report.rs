@@ -1,6 +1,6 @@
 //! Terminal tables and CSV of sweep rows and scheme summaries.
 
-use super::aggregate::Aggregate;
+use super::aggregate::{Aggregate, CRITICAL_OBSERVABLES};
 use super::critical::Critical;
 use super::sweep::SchemeSummary;
 
@@ -32,6 +32,22 @@ const ROW_COLUMNS: [(&str, Cell<Aggregate>, usize); 14] = [
     ),
     ("ms/step", |r| r.ms_per_step, 4),
 ];
+
+/// Columns shown only where some row has a value: the observables of chains and mixtures.
+const MEASURED_COLUMNS: [(&str, Cell<Aggregate>, usize); 3] = [
+    ("bond", |r| r.bond_length, 4),
+    ("bond err %", |r| percent(r.bond_length_error), 2),
+    ("like err %", |r| percent(r.like_neighbours_error), 2),
+];
+
+/// The columns of `rows`: every one of [`ROW_COLUMNS`], those of [`MEASURED_COLUMNS`] that
+/// some row has.
+fn columns(rows: &[Aggregate]) -> Vec<&'static (&'static str, Cell<Aggregate>, usize)> {
+    let measured = MEASURED_COLUMNS
+        .iter()
+        .filter(|(_, f, _)| rows.iter().any(|r| f(r).is_some()));
+    ROW_COLUMNS.iter().chain(measured).collect()
+}
 
 fn percent(x: Option<f64>) -> Option<f64> {
     x.map(|x| 100.0 * x)
@@ -72,14 +88,15 @@ fn align(header: Vec<String>, body: Vec<Vec<String>>) -> String {
 
 /// One line per (scheme, dt): observables, relative errors, cost and stability.
 pub fn rows_table(rows: &[Aggregate]) -> String {
+    let columns = columns(rows);
     let mut header = vec!["scheme".to_string()];
-    header.extend(ROW_COLUMNS.iter().map(|c| c.0.to_string()));
+    header.extend(columns.iter().map(|c| c.0.to_string()));
     header.push("stable".into());
     let body = rows
         .iter()
         .map(|r| {
             let mut line = vec![r.scheme.clone()];
-            line.extend(ROW_COLUMNS.iter().map(|(_, f, d)| number(f(r), *d)));
+            line.extend(columns.iter().map(|(_, f, d)| number(f(r), *d)));
             line.push(format!("{}/{}", r.stable_runs, r.runs));
             line
         })
@@ -90,9 +107,10 @@ pub fn rows_table(rows: &[Aggregate]) -> String {
 /// The rows as CSV (full precision, empty where nothing was measured), written by the `csv`
 /// crate: a scheme string with commas or quotes is quoted as RFC 4180 requires.
 pub fn rows_csv(rows: &[Aggregate]) -> String {
+    let columns = columns(rows);
     let mut w = csv::Writer::from_writer(Vec::new());
     let header = std::iter::once("scheme")
-        .chain(ROW_COLUMNS.iter().map(|(name, _, _)| *name))
+        .chain(columns.iter().map(|(name, _, _)| *name))
         .chain(["stable_runs", "runs"]);
     // Writing to memory fails only on a bug; an empty CSV then shows it.
     let mut write = |record: Vec<String>| w.write_record(record).is_ok();
@@ -100,7 +118,7 @@ pub fn rows_csv(rows: &[Aggregate]) -> String {
     for r in rows {
         let cells = std::iter::once(r.scheme.clone())
             .chain(
-                ROW_COLUMNS
+                columns
                     .iter()
                     .map(|(_, f, _)| f(r).map_or_else(String::new, |x| x.to_string())),
             )
@@ -148,6 +166,37 @@ pub fn summary_table(summary: &[SchemeSummary], reference: &str) -> String {
         })
         .collect();
     align(header, body)
+}
+
+/// One line per scheme: the critical dt at 10 % and 1 % relative error of every observable
+/// the sweep measured ([`SchemeSummary::critical_steps`]), in compact form
+/// ([`Critical::compact`]).
+pub fn critical_table(summary: &[SchemeSummary]) -> String {
+    let measured: Vec<_> = CRITICAL_OBSERVABLES
+        .iter()
+        .filter(|(name, _, _)| summary.iter().any(|s| s.critical_steps.contains_key(name)))
+        .collect();
+    let mut header = vec!["scheme".to_string()];
+    for (_, label, _) in &measured {
+        header.extend(["10 %", "1 %"].map(|t| format!("{label} {t}")));
+    }
+    let body = summary
+        .iter()
+        .map(|s| {
+            let mut line = vec![s.scheme.clone()];
+            for (name, _, _) in &measured {
+                let c = s.critical_steps.get(name);
+                line.push(critical_compact(c.and_then(|c| c.critical_10)));
+                line.push(critical_compact(c.and_then(|c| c.critical_1)));
+            }
+            line
+        })
+        .collect();
+    align(header, body)
+}
+
+fn critical_compact(c: Option<Critical>) -> String {
+    c.map_or_else(|| "-".into(), Critical::compact)
 }
 
 #[cfg(test)]

@@ -2,7 +2,7 @@
 //! parallel (one point per worker, each single-threaded), resumable from the results file,
 //! summarised as critical step sizes, stability thresholds and efficiencies.
 
-use crate::aggregate::Aggregate;
+use crate::aggregate::{Aggregate, CRITICAL_OBSERVABLES};
 use crate::batch::{distinct, unfinished, Batch};
 use crate::cost::{self, Cost};
 use crate::critical::{critical_dt, Critical};
@@ -13,12 +13,20 @@ use crate::scene::section::json_keys;
 use crate::scene::{Observable, Scene, SceneError};
 use dpd_core::{ParamError, Scheme};
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 use std::path::Path;
 use thiserror::Error;
 
 /// The two thresholds of the relative error of the sweep's observable (algorithms.md
 /// section 7).
 pub const THRESHOLDS: [f64; 2] = [0.10, 0.01];
+
+/// Where the relative error of one observable first reaches 10 % and 1 %.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Crossings {
+    pub critical_10: Option<Critical>,
+    pub critical_1: Option<Critical>,
+}
 
 /// Per scheme: critical step sizes, stability and efficiency.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -32,6 +40,11 @@ pub struct SchemeSummary {
     /// blow-up).
     pub critical_10: Option<Critical>,
     pub critical_1: Option<Critical>,
+    /// The same for each observable the sweep measured, keyed by its field name in the rows
+    /// ([`CRITICAL_OBSERVABLES`]): T_K and T_C against k_B T, the potential energy, the mean
+    /// bond length (with bonds) and the like-neighbour fraction (with `like_neighbours`, the
+    /// species that errs most) against the baseline.
+    pub critical_steps: BTreeMap<&'static str, Crossings>,
     /// Largest grid dt below the first one where a run blew up (`None` if the smallest did).
     pub stability_dt: Option<f64>,
     /// Smallest grid dt where a run blew up (`None`: stable over the whole grid).
@@ -316,11 +329,25 @@ fn summarise(
     cost: Option<&Cost>,
 ) -> SchemeSummary {
     let rows: Vec<&Aggregate> = rows.iter().filter(|r| r.scheme == scheme).collect();
-    let curve: Vec<(f64, f64)> = rows
+    let crossings = |curve: Vec<(f64, f64)>| THRESHOLDS.map(|t| critical_dt(&curve, t));
+    let [c10, c1] = crossings(
+        rows.iter()
+            .map(|r| (r.dt, r.critical_error(observable)))
+            .collect(),
+    );
+    let critical_steps = CRITICAL_OBSERVABLES
         .iter()
-        .map(|r| (r.dt, r.critical_error(observable)))
+        .filter(|(_, _, error)| rows.iter().any(|r| error(r).is_some()))
+        .map(|&(name, _, error)| {
+            let [critical_10, critical_1] =
+                crossings(rows.iter().map(|r| (r.dt, r.critical(error(r)))).collect());
+            let both = Crossings {
+                critical_10,
+                critical_1,
+            };
+            (name, both)
+        })
         .collect();
-    let [c10, c1] = THRESHOLDS.map(|t| critical_dt(&curve, t));
     let first_unstable = rows.iter().position(|r| !r.stable);
     let stable_until = first_unstable.unwrap_or(rows.len());
     let stable_rows = || rows.iter().filter(|r| r.stable);
@@ -334,6 +361,7 @@ fn summarise(
         critical_dt_1: c1.and_then(Critical::dt),
         critical_10: c10,
         critical_1: c1,
+        critical_steps,
         stability_dt: stable_until.checked_sub(1).map(|k| rows[k].dt),
         first_blow_up_dt: first_unstable.map(|k| rows[k].dt),
         ms_per_step: cost.and_then(|c| c.of(scheme)),
@@ -345,7 +373,7 @@ fn summarise(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::result::Viscosity;
+    use crate::result::{ChainSizes, Viscosity};
     use crate::scene::SweepSpec;
     use approx::assert_relative_eq;
     use std::sync::atomic::AtomicUsize;
@@ -537,6 +565,101 @@ mod tests {
         walls.geometry.walls = Some(Default::default());
         walls.geometry.box_lengths = Some([5.0, 5.0, 10.0]);
         assert_eq!(walls.validate().unwrap_err().field, "sweep.observable");
+    }
+
+    /// The mean bond length and the like-neighbour fractions cross as the other observables
+    /// do, against the baseline; the like-neighbour error is that of the species erring most.
+    #[test]
+    fn bond_length_and_like_neighbours_have_critical_steps() {
+        let mut scene = tiny();
+        scene.run.runs = 1;
+        scene.sweep.as_mut().unwrap().schemes = vec!["vv".into()];
+        scene.sweep.as_mut().unwrap().reference = Some("vv".into());
+        let with = |scheme: &str, dt: f64, bond: f64, a: f64, b: f64| RunResult {
+            chains: Some(ChainSizes {
+                bond_length: bond,
+                ..ChainSizes::default()
+            }),
+            like_neighbours: Some(BTreeMap::from([
+                ("A".to_string(), Some(a)),
+                ("B".to_string(), Some(b)),
+            ])),
+            ..point(scheme, dt, 1.0, 1.0)
+        };
+        // Baseline: bond 0.8, fractions 0.9 and 0.5. vv's bond length errs +5 % and +20 % (as
+        // dt^2: 10 % at 0.05 sqrt(2)); species B errs +2 % then +4 %, species A -0.5 % then
+        // -20 %: the largest errors are +2 % (B) and -20 % (A), a sign change.
+        let points = vec![
+            with("vv", 0.05, 0.84, 0.9 * 0.995, 0.51),
+            with("vv", 0.1, 0.96, 0.9 * 0.8, 0.52),
+            with("aboba", 0.025, 0.8, 0.9, 0.5),
+        ];
+        let r = SweepResults::new(&scene, points, None);
+        assert_relative_eq!(
+            r.rows[1].bond_length_error.unwrap(),
+            0.2,
+            max_relative = 1e-12
+        );
+        assert_relative_eq!(
+            r.rows[0].like_neighbours_error.unwrap(),
+            0.02,
+            max_relative = 1e-9
+        );
+        assert_relative_eq!(
+            r.rows[1].like_neighbours_error.unwrap(),
+            -0.2,
+            max_relative = 1e-9
+        );
+        let steps = &r.summary[0].critical_steps;
+        let names: Vec<_> = steps.keys().copied().collect();
+        assert_eq!(
+            names,
+            [
+                "bond_length",
+                "configurational_temperature",
+                "kinetic_temperature",
+                "like_neighbours",
+                "potential_energy"
+            ]
+        );
+        let bond = steps["bond_length"];
+        assert_relative_eq!(
+            bond.critical_10.unwrap().dt().unwrap(),
+            0.05 * 2f64.sqrt(),
+            max_relative = 1e-9
+        );
+        assert_eq!(bond.critical_1, Some(Critical::BelowRange { dt_min: 0.05 }));
+        let Some(Critical::SignChange { dt, below, above }) = steps["like_neighbours"].critical_10
+        else {
+            panic!("{:?}", steps["like_neighbours"]);
+        };
+        assert_eq!((below, above), (0.05, 0.1));
+        // log |e| linear in log dt from 2 % to 20 %: 10 % at 0.05 x 2^(ln 5 / ln 10).
+        assert_relative_eq!(
+            dt,
+            0.05 * 2f64.powf(5f64.ln() / 10f64.ln()),
+            max_relative = 1e-9
+        );
+        // T_K and T_C exact, U equal to the baseline's: never reached.
+        for name in [
+            "kinetic_temperature",
+            "configurational_temperature",
+            "potential_energy",
+        ] {
+            assert_eq!(
+                steps[name].critical_10,
+                Some(Critical::NotReached { dt_max: 0.1 }),
+                "{name}"
+            );
+        }
+        // A fluid measures neither.
+        let fluid = vec![
+            point("vv", 0.05, 1.05, 1.0),
+            point("aboba", 0.025, 1.0, 1.0),
+        ];
+        let plain = SweepResults::new(&scene, fluid, None);
+        assert_eq!(plain.summary[0].critical_steps.len(), 3);
+        assert!(plain.rows[0].bond_length.is_none() && plain.rows[0].like_neighbours.is_none());
     }
 
     #[test]

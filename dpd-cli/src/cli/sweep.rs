@@ -70,6 +70,15 @@ fn execute(scene: &Scene, json: &Path, out: &Path, fresh: bool) -> ExitCode {
     if let Some(cost) = &results.cost {
         outln!("{}", cost.describe());
     }
+    outln!();
+    outln!(
+        "critical dt of each observable: T_K and T_C against k_B T, the others against the \
+         baseline ({} at dt = {}); *: the error changes sign around the crossing; (a, b]: the \
+         run at b blew up first",
+        w.baseline_scheme,
+        w.baseline_dt()
+    );
+    out!("{}", report::critical_table(&results.summary));
     finish(&results, written, scene)
 }
 
