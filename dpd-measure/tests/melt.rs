@@ -43,7 +43,7 @@ fn melt(scheme: &str, dt: f64) -> [f64; 3] {
     ]
 }
 
-/// Tolerances, from 4 seeds of each run at these settings (docs/systems.md): the mean bond
+/// Tolerances, from 4 seeds of each run at these settings (docs/systems-measured.md): the mean bond
 /// length varies by 1e-4 between seeds and is biased by -7e-4 with ABOBA at dt = 0.05 and
 /// -3e-4 with the MTS scheme: within 2e-3 of the reference (a bond 0.3 % longer or shorter
 /// fails). <R_g^2> (about 1.05) varies by 0.02 between seeds, 0.014 for a mean of two, 0.02
