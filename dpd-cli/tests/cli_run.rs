@@ -133,6 +133,21 @@ fn a_data_file_written_by_a_run_starts_the_next() {
     let next = ["run", "--scene", &scene, "--init", "end.data", "--json"];
     let v = json(&dpd(dir.path(), &next));
     assert_eq!(v["stable"], true);
+    // Without a scene file (whose n is 100) the file's 100 particles and box are the run's;
+    // an `--n` or `--density` the file contradicts is refused, naming both.
+    let alone = ["run", "--init", "end.data", "--time", "0.5", "--json"];
+    let v = json(&dpd(dir.path(), &alone));
+    let edges: Vec<f64> = serde_json::from_value(v["scene"]["box"].clone()).unwrap();
+    let density = v["scene"]["density"].as_f64().unwrap();
+    assert_eq!(
+        (density * edges.iter().product::<f64>()).round(),
+        100.0,
+        "{v}"
+    );
+    let out = dpd(dir.path(), &[&alone[..], &["--n", "120"]].concat());
+    refused(&out, "the file has 100 particles, the scene 120");
+    let out = dpd(dir.path(), &[&alone[..], &["--density", "4"]].concat());
+    refused(&out, "the file has 100 particles, the scene 133");
     let bad = write(
         dir.path(),
         "bad.data",

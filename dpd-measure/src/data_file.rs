@@ -232,7 +232,7 @@ mod tests {
             .unwrap()
             .write(&file)
             .unwrap();
-        let init = format!("n = 120\ninit = {:?}\n", file.display().to_string());
+        let init = format!("init = {:?}\n", file.display().to_string());
         let again = Scene::from_toml(&init, "t").unwrap();
         again.validate().unwrap();
         let copy = again.system(0.05, 3).unwrap();

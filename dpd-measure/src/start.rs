@@ -57,6 +57,22 @@ impl InitSpec {
         })
     }
 
+    /// The particle count and box edges of the start, for a scene that leaves them to the
+    /// file (docs/scenes.md, `init`).
+    pub fn size(&self) -> Result<(usize, [f64; 3]), ParamError> {
+        let bad = |message: String| ParamError::new("init", self.file.display(), message);
+        match self.file.extension().and_then(|e| e.to_str()) {
+            Some("data") => {
+                let data = DataFile::read(&self.file).map_err(|e| bad(e.to_string()))?;
+                Ok((data.atoms.len(), data.bounds.map(|[lo, hi]| hi - lo)))
+            }
+            _ => {
+                let (frame, _) = self.gsd_frame()?;
+                Ok((frame.len(), frame.box_lengths))
+            }
+        }
+    }
+
     /// The start, checked against the scene's particle count, box and type names (`names`,
     /// empty without species).
     pub fn read(
@@ -114,15 +130,16 @@ impl InitSpec {
         let f = &start.frame;
         if f.len() != n {
             return Err(bad(format!(
-                "{k} has {} particles, the scene {n}: set n (or box and density) to match",
+                "{k} has {} particles, the scene {n}: leave n, box and density out to take \
+                 the file's, or set them to match",
                 f.len()
             )));
         }
         let mismatch = |a: f64, b: f64| (a - b).abs() > 1e-5 * b.abs();
         if (0..3).any(|d| mismatch(f.box_lengths[d], box_lengths[d])) {
             return Err(bad(format!(
-                "{k} has box {:?}, the scene {box_lengths:?}: set box (or n and density) \
-                 to match",
+                "{k} has box {:?}, the scene {box_lengths:?}: leave n, box and density out \
+                 to take the file's, or set them to match",
                 f.box_lengths
             )));
         }

@@ -336,11 +336,12 @@ def test_ideal_chains_have_the_gaussian_sizes():
 def test_write_data_starts_the_same_system(tmp_path):
     # The file of sim.write_data (the writer of `dpd run --write-data`) read back as init: the
     # same types, masses, bonds, angles and positions bit for bit, velocities to rounding (the
-    # file holds p / m), so the same potential energy and pressure.
+    # file holds p / m), so the same potential energy and pressure. The file's particle count
+    # and box are the simulation's (no `n`).
     sim = _melt(n=60, seed=2, threads=1)
     sim.run(steps=20)
     sim.write_data(tmp_path / "melt.data")
-    back = dpd.Simulation(init=str(tmp_path / "melt.data"), n=60, threads=1)
+    back = dpd.Simulation(init=str(tmp_path / "melt.data"), threads=1)
     assert back.types == sim.types and np.array_equal(back.typeid, sim.typeid)
     assert np.array_equal(back.masses, sim.masses)
     assert np.array_equal(back.bonds, sim.bonds) and np.array_equal(back.angles, sim.angles)
@@ -352,7 +353,7 @@ def test_write_data_starts_the_same_system(tmp_path):
         assert b[name] == pytest.approx(a[name], rel=1e-12), name
     mix = _mixture(n=200, seed=3, threads=1)
     mix.write_data(tmp_path / "mix.data")
-    again = _mixture(init=str(tmp_path / "mix.data"), n=200, threads=1)
+    again = _mixture(init=str(tmp_path / "mix.data"), threads=1)
     assert again.types == ["A", "B"] and np.array_equal(again.typeid, mix.typeid)
     assert np.array_equal(again.masses, mix.masses)
     with pytest.raises(ValueError, match=r"invalid write_data = \"x.data\": `dpd run` writes"):
@@ -378,6 +379,6 @@ def test_checkpoints_and_gsd_frames_keep_the_chains(tmp_path):
     assert np.array_equal(other.positions, sim.positions)
     sim.trajectory(tmp_path / "melt.gsd", every=1.0)
     sim.trajectory(None)
-    again = _melt(n=60, init=str(tmp_path / "melt.gsd"), threads=1)
+    again = _melt(init=str(tmp_path / "melt.gsd"), threads=1)
     assert np.array_equal(again.bonds, sim.bonds) and np.array_equal(again.typeid, sim.typeid)
     assert np.allclose(again.positions, sim.positions, rtol=0, atol=1e-5)

@@ -703,7 +703,7 @@ def melt(args):
       B[bond](1/2))^1 B[pair](1/2) O(1/2), repeats OBABO bitwise (200 steps, 17 digits);
     - refusals: B[bond] without bonded styles, a force-adding fix beside a grouped scheme, and T
       with bonds in a scheme without B[bond], each named."""
-    n = melt_data(os.path.join(args.work, "melt.data"))
+    melt_data(os.path.join(args.work, "melt.data"))
     mine = os.path.join(args.work, "melt-dpd.data")
     melt_data(mine, coeffs=f"PairIJ Coeffs # dpd\n\n1 1 25.0 {GAMMA} 1.0\n\n"
                            f"Bond Coeffs # harmonic\n\n1 {MELT_K} {MELT_R0}\n\n")
@@ -734,7 +734,7 @@ def melt(args):
         name = f"dpd run {scheme}"
         results[name] = dpd_run(args, scheme, dt, dt * (equil + steps), args.dpd_runs,
                                 keys=("chains/bond_length", "pressure"),
-                                scene=["--init", mine, "--n", str(n)])
+                                scene=["--init", mine])
         print(f"     melt dt={dt}: {name}: bond length {results[name][0][0]:.5f} +- {results[name][0][1]:.5f}, "
               f"pressure {results[name][1][0]:.4f} +- {results[name][1][1]:.4f}", flush=True)
     ref = results.pop("LAMMPS pair dpd + fix nve")

@@ -4,8 +4,9 @@ use super::scene_flags::{ObserveFlags, SceneFlags};
 use super::{bad_input, print_json, progress, INTERRUPTED};
 use dpd::error::shown;
 use dpd_measure::plot::profile_plot;
+use dpd_measure::scene::section::merge;
 use dpd_measure::scene::{ProfileSpec, TrajectorySpec};
-use dpd_measure::{report, Aggregate, Batch, Control, Job, RunResult, Scene, SceneError};
+use dpd_measure::{report, Aggregate, Batch, Control, Job, Keys, RunResult, Scene, SceneError};
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -59,7 +60,10 @@ struct RunReport<'a> {
 }
 
 pub fn main(args: Args) -> ExitCode {
-    let scene = args.observe.keys().and_then(|k| args.scene.scene_with(&k));
+    let scene = args.observe.keys().and_then(|mut keys| {
+        merge(&mut keys, &init_keys(&args));
+        args.scene.scene_with(&keys)
+    });
     let scene = match scene.and_then(|s| with_files(s, &args)) {
         Ok(scene) => scene,
         Err(e) => return bad_input(e),
@@ -130,19 +134,27 @@ pub fn main(args: Args) -> ExitCode {
     }
 }
 
-/// `scene` with `--trajectory`/`--every`, `--init`, `--init-reset` and `--write-data`
-/// applied, validated.
+/// `--init` and `--init-reset` as scene keys: they join the scene's before it is read, so that
+/// the file's particle count and box fill in what the scene file and flags leave out.
+fn init_keys(args: &Args) -> Keys {
+    let mut keys = Keys::new();
+    if let Some(init) = &args.init {
+        keys.insert("init".into(), init.clone().into());
+    }
+    if args.init_reset {
+        keys.insert("init_reset".into(), true.into());
+    }
+    keys
+}
+
+/// `scene` with `--trajectory`/`--every` and `--write-data` applied, validated.
 fn with_files(mut scene: Scene, args: &Args) -> Result<Scene, SceneError> {
     if let (Some(file), Some(every)) = (&args.trajectory, args.every) {
         scene.output.trajectory = Some(TrajectorySpec::new(file.clone(), every));
     }
-    if let Some(init) = &args.init {
-        scene.geometry.init = Some(init.clone());
-    }
     if let Some(file) = &args.write_data {
         scene.output.write_data = Some(file.clone());
     }
-    scene.geometry.init_reset |= args.init_reset;
     scene.validate()?;
     Ok(scene)
 }

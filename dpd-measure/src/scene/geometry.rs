@@ -26,11 +26,21 @@ pub struct Geometry {
     #[serde(rename = "box")]
     pub box_lengths: Option<[f64; 3]>,
     pub walls: Option<WallSpec>,
-    /// Start from a frame of a GSD file, `"FILE.gsd"` (its last frame) or `"FILE.gsd:K"`.
-    /// The trajectory's step, time and images go on from the frame's, as HOOMD's do.
+    /// Start from a frame of a GSD file, `"FILE.gsd"` (its last frame) or `"FILE.gsd:K"`, or
+    /// from a LAMMPS data file, `"FILE.data"`; its box and particle count are the scene's
+    /// unless it sets `n`, `box` or `density`. The trajectory's step, time and images go on
+    /// from the frame's, as HOOMD's do.
     pub init: Option<String>,
     /// With `init`: count the trajectory's step, time and images from 0 instead.
     pub init_reset: bool,
+}
+
+/// Which of the keys `n`, `box` and `density` a scene sets (the others take their defaults).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Given {
+    pub n: bool,
+    pub box_lengths: bool,
+    pub density: bool,
 }
 
 /// Walls across z: the channel `lower <= z <= upper` holds the fluid, the slabs outside it
@@ -140,6 +150,31 @@ impl Geometry {
         if let Some(init) = &self.init {
             InitSpec::parse(init)?;
         }
+        Ok(())
+    }
+
+    /// With `init`, the size the scene leaves to the file: `given` says which of `n`, `box`
+    /// and `density` the scene sets; without `box` the box is the file's, and without
+    /// `density` the density is that of the file's particles (or of `n`) in the box. What the
+    /// scene sets is kept, and a count or box other than the file's is refused when the run
+    /// starts, naming both.
+    pub fn size_from_init(&mut self, given: Given) -> Result<(), ParamError> {
+        let Some(init) = &self.init else {
+            return Ok(());
+        };
+        if given.box_lengths && given.density {
+            return Ok(());
+        }
+        let (particles, lengths) = InitSpec::parse(init)?.size()?;
+        let lengths = self
+            .box_lengths
+            .filter(|_| given.box_lengths)
+            .unwrap_or(lengths);
+        if !given.density {
+            let count = if given.n { self.n } else { particles };
+            self.density = count as f64 / lengths.iter().product::<f64>();
+        }
+        self.box_lengths = Some(lengths);
         Ok(())
     }
 

@@ -89,11 +89,18 @@ pub enum SceneError {
 }
 
 impl Scene {
-    /// Read a scene from its keys; `path` names their source in messages. Not validated.
+    /// Read a scene from its keys; `path` names their source in messages. Not validated, but
+    /// with `init` the file is read for the particle count and box the keys leave out
+    /// ([`Geometry::size_from_init`]).
     pub fn from_keys(mut keys: Keys, path: &str) -> Result<Scene, SceneError> {
         let error = |message: String| SceneError::Toml {
             path: path.into(),
             message,
+        };
+        let given = geometry::Given {
+            n: keys.contains_key("n"),
+            box_lengths: keys.contains_key("box"),
+            density: keys.contains_key("density"),
         };
         let mut scene = Scene {
             output: take(&mut keys).map_err(error)?,
@@ -119,6 +126,7 @@ impl Scene {
         if let Some(message) = unknown(&keys, &known) {
             return Err(error(message));
         }
+        scene.geometry.size_from_init(given)?;
         // The header and the results file show the reference the sweep uses.
         if let Some(w) = &mut scene.sweep {
             w.reference = Some(w.reference().to_string());

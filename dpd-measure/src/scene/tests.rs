@@ -106,6 +106,53 @@ fn keys_given_by_a_caller_replace_the_scene_file_s() {
     assert!(e.to_string().contains("did you mean `density`"), "{e}");
 }
 
+/// With `init`, the file's particle count and box are the scene's unless it sets `n`, `box`
+/// or `density`; what it sets and the file contradicts is refused when the run starts, naming
+/// both counts or boxes.
+#[test]
+fn init_takes_the_file_s_size_unless_the_scene_sets_it() {
+    let scene = Scene::from_toml("box = [5.0, 6.0, 7.0]\ndensity = 2.0", "t").unwrap();
+    let sys = scene.system(0.05, 1).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("s.data");
+    let data = crate::data_file::data_of(&sys, &scene.type_names(1), "t").unwrap();
+    data.write(&file).unwrap();
+    let init = format!("init = {:?}\n", file.display().to_string());
+    let s = Scene::resolve(None, &keys(&init)).unwrap();
+    assert_eq!(s.geometry.particles(), 420);
+    assert_eq!(s.geometry.box_lengths, Some([5.0, 6.0, 7.0]));
+    assert_eq!(s.system(0.05, 1).unwrap().positions(), sys.positions());
+    let cases = [
+        ("n = 420", None),
+        ("density = 2.0", None),
+        ("n = 500", Some("the file has 420 particles, the scene 500")),
+        (
+            "density = 3.0",
+            Some("the file has 420 particles, the scene 630"),
+        ),
+        (
+            "box = [5.0, 6.0, 8.0]",
+            Some("the file has box [5.0, 6.0, 7.0], the scene [5.0, 6.0, 8.0]"),
+        ),
+    ];
+    for (extra, message) in cases {
+        let s = Scene::resolve(None, &keys(&format!("{init}{extra}"))).unwrap();
+        match (s.system(0.05, 1), message) {
+            (Ok(copy), None) => assert_eq!(copy.len(), 420, "{extra}"),
+            (Err(e), Some(m)) => assert!(e.to_string().contains(m), "{extra}: {e}"),
+            (got, _) => panic!("{extra}: {:?}", got.map(|s| s.len())),
+        }
+    }
+    let missing = format!(
+        "init = {:?}",
+        dir.path().join("none.data").display().to_string()
+    );
+    let e = Scene::resolve(None, &keys(&missing))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("invalid init") && e.contains("none.data"), "{e}");
+}
+
 #[test]
 fn sweep_keys_merge_into_the_scene_s_table_and_are_validated() {
     let dir = tempfile::tempdir().unwrap();
@@ -307,11 +354,12 @@ fn a_melt_restarts_from_a_gsd_frame_with_its_chains() {
     );
     assert_eq!(&bonds.group[..4], [[0, 1], [1, 2], [2, 3], [4, 5]]);
     let init = format!("init = {:?}\n", spec.file.display().to_string());
-    let again = Scene::from_toml(&format!("{init}{melt}"), "t").unwrap();
+    // The frame's 60 particles and box are the scene's: `n` is left out.
+    let again = Scene::from_toml(&format!("{init}{}", &melt["n = 60\n".len()..]), "t").unwrap();
     again.validate().unwrap();
     let copy = again.system(0.05, 3).unwrap();
     assert_eq!(copy.topology(), sys.topology());
-    let plain = Scene::from_toml(&format!("{init}n = 60\n"), "t").unwrap();
+    let plain = Scene::from_toml(&init, "t").unwrap();
     let e = plain.system(0.05, 3).unwrap_err().to_string();
     assert!(
         e.contains("has 15 bonds, whose coefficients a GSD file does not hold"),
