@@ -11,11 +11,12 @@
 # scenes/shear.toml` (and without the fix's virial, which must differ); pair_style dpd/soft
 # against pair dpd at zero friction on a two-type mixture (forces, energy, per-atom tallies, 1
 # and 2 ranks); per type-pair friction and cutoff against pair dpd + fix nve on a two-type
-# mixture; ABOBA's `tally evaluation` energy against `dpd run` of its cyclic shift B(1/2) O
+# mixture, and `dpd run`'s like-neighbour fraction of it against pair dpd's; ABOBA's `tally evaluation` energy against `dpd run` of its cyclic shift B(1/2) O
 # B(1/2) A; LAMMPS data files written by `dpd run --write-data` and by LAMMPS's write_data
 # starting the other engine in the same state (energy, temperature, virial pressure); and force
-# groups on a bead-spring melt (ABOBA, an MTS ABOBA and T beside B[bond] against pair dpd + bond
-# harmonic + fix nve; r-RESPA at inner count 1 bitwise OBABO). The exported tree is built in a
+# groups on a bead-spring melt (ABOBA, an MTS ABOBA, T beside B[bond] and `dpd run` against pair
+# dpd + bond harmonic + fix nve in mean bond length, pressure and <R_g^2>; r-RESPA at inner
+# count 1 bitwise OBABO). The exported tree is built in a
 # fresh directory without cargo, rustc or the checkout (docs/lammps.md, "Export and build").
 # The full evidence (1 and 2 ranks, 2000 steps, the plugin's VV against pair dpd + fix nve;
 # shear over 400 time units) is run by hand: `bash scripts/test-lammps.sh --only equilibrium`

@@ -431,6 +431,21 @@ def mixture_pairs(plugin_side, seed=4321):
             + "".join(f" coeff {i} {j} {g} {r}" for (i, j), (a, g, r) in MIX.items()))
 
 
+def mixture_scene(work):
+    """MIX as a scene of `dpd run` (species A and B for types 1 and 2), asking for the
+    like-neighbour fraction, averaged over the last 10 of 15 time units (LAMMPS's window in
+    per_pair). `dpd run` counts the neighbours within the largest cut-off, 1, whatever the
+    pair's own r_c (0.9 across): what compute coord/atom cutoff 1.0 counts."""
+    path = os.path.join(work, "mixture-pairs.toml")
+    names = {1: "A", 2: "B"}
+    with open(path, "w") as f:
+        f.write(f"gamma = {GAMMA}\nlike_neighbours = true\naverage_fraction = {2 / 3!r}\n"
+                "[[species]]\nname = \"A\"\nfraction = 0.6\n[[species]]\nname = \"B\"\nfraction = 0.4\n[pairs]\n"
+                + "".join(f"{names[i]}-{names[j]} = {{ a = {a}, gamma = {g}, rc = {r} }}\n"
+                          for (i, j), (a, g, r) in MIX.items()))
+    return path
+
+
 def per_pair(args):
     """Per type-pair friction and cutoff (`coeff I J gamma r_c`) against LAMMPS's pair dpd with
     the same pair_coeff values, both at dt = 0.01 (their own biases there are below 0.2 % of
@@ -442,7 +457,11 @@ def per_pair(args):
       each type 0.1 and 0.3 time units later, mean over 4 seeds, within 4 combined errors of
       the seeds' spread. A plugin using one friction for all pairs (4.5) relaxes type 2 at a
       fifth to a half of the rate: with `coeff I J 4.5 r_c` for every pair these four checks
-      failed by 12 to 21 sigma (tried by hand, docs/lammps.md)."""
+      failed by 12 to 21 sigma (tried by hand, docs/lammps.md);
+    - `dpd run` (its own engine; ABOBA, 8 runs of 15 time units from the pair dpd run's start,
+      written by write_data with its pair coefficients) against pair dpd's like-neighbour
+      fraction, within 4 combined errors. Both count the neighbours within 1 (mixture_scene):
+      with r_c = 1 across instead of 0.9, `dpd run` measured 0.792 against 0.574 (by hand)."""
     extra = """group t1 type 1
 group t2 type 2
 compute T1 t1 temp
@@ -452,9 +471,12 @@ compute like t1 reduce ave c_cn[1] c_cn[2]
 variable frac equal c_like[1]/(c_like[1]+c_like[2])"""
     columns = "step c_T1 c_T2 v_frac v_px v_py"
     rows = {}
+    start = os.path.join(args.work, "mixture-start.data")
     for side in (True, False):
         name = "plugin" if side else "pair dpd"
-        text = lammps_input(args.plugin, mixture_pairs(side), 1500, 0.01, 5, extra=extra, types=2,
+        # pair dpd's run writes its start (with velocities and pair coefficients) for `dpd run`.
+        write = "" if side else f"\nwrite_data {start} pair ij"
+        text = lammps_input(args.plugin, mixture_pairs(side), 1500, 0.01, 5, extra=extra + write, types=2,
                             columns=columns)
         code, out = run_lammps(args, text, 2, "pairs-eq")
         rows[name] = [r for r in thermo_rows(out) if r[0] > 500] if code == 0 else []
@@ -473,6 +495,11 @@ variable frac equal c_like[1]/(c_like[1]+c_like[2])"""
         a, b = (mean_and_error([r[3] for r in rows[k]]) for k in ("plugin", "pair dpd"))
         check(agree(a, b), f"mixture dt=0.01 2 ranks, like-neighbour fraction of type 1: plugin {a[0]:.4f} "
                            f"+- {a[1]:.4f} vs pair dpd + fix nve {b[0]:.4f} +- {b[1]:.4f} ({sigmas_apart(a, b):.1f} sigma)")
+        mine = dpd_run(args, "aboba", 0.01, 15.0, args.dpd_runs, keys=("like_neighbours/A",),
+                       scene=["--scene", mixture_scene(args.work), "--init", start])[0]
+        check(agree(mine, b), f"mixture dt=0.01, like-neighbour fraction of type 1: dpd run aboba {mine[0]:.4f} "
+                              f"+- {mine[1]:.4f} vs pair dpd + fix nve {b[0]:.4f} +- {b[1]:.4f} "
+                              f"({sigmas_apart(mine, b):.1f} sigma)")
     heat = extra + "\nrun 200\nvelocity t2 scale 3.0\nreset_timestep 0"
     curves = {}
     for side in (True, False):
@@ -624,11 +651,10 @@ def tally(args):
     check(z > SIGMAS, f"  ... and differs from dpd run aboba's (end of step) {ends[0]:.4f} by {z:.1f} sigma")
 
 
-def melt_data(path, chains=45, beads=10, bond=0.7, seed=11, coeffs=""):
+def melt_data(path, chains=45, beads=10, bond=0.7, seed=11):
     """A LAMMPS data file (atom_style bond) of `chains` linear chains of `beads` beads at density
-    3: random walks of steps `bond` from random starts, unwrapped (read_data wraps them);
-    `coeffs`, coefficient sections written after the masses (for `dpd run --init`: LAMMPS wants
-    its styles defined before it reads them)."""
+    3: random walks of steps `bond` from random starts, unwrapped (read_data wraps them).
+    Returns the chains' mean squared radius of gyration (equal bead weights)."""
     import random
     rng = random.Random(seed)
     n = chains * beads
@@ -643,15 +669,20 @@ def melt_data(path, chains=45, beads=10, bond=0.7, seed=11, coeffs=""):
                 x = [x[k] + bond * d[k] / norm for k in range(3)]
                 bonds.append((len(atoms) - 1, len(atoms)))
             atoms.append((c + 1, x))
+    gyration = 0.0
+    for c in range(chains):
+        chain = [x for mol, x in atoms if mol == c + 1]
+        centre = [sum(x[k] for x in chain) / beads for k in range(3)]
+        gyration += sum((x[k] - centre[k]) ** 2 for x in chain for k in range(3)) / beads / chains
     with open(path, "w") as f:
         f.write(f"bead-spring melt\n\n{n} atoms\n{len(bonds)} bonds\n1 atom types\n1 bond types\n\n"
-                f"0 {side!r} xlo xhi\n0 {side!r} ylo yhi\n0 {side!r} zlo zhi\n\nMasses\n\n1 1.0\n\n{coeffs}Atoms # bond\n\n")
+                f"0 {side!r} xlo xhi\n0 {side!r} ylo yhi\n0 {side!r} zlo zhi\n\nMasses\n\n1 1.0\n\nAtoms # bond\n\n")
         for k, (mol, x) in enumerate(atoms):
             f.write(f"{k + 1} {mol} 1 {x[0]!r} {x[1]!r} {x[2]!r}\n")
         f.write("\nBonds\n\n")
         for k, (i, j) in enumerate(bonds):
             f.write(f"{k + 1} 1 {i + 1} {j + 1}\n")
-    return n
+    return gyration
 
 
 # The melt: scenes/melt-stiff.toml's harmonic bonds, K = 100 in LAMMPS's E = K (r - r0)^2 and
@@ -660,8 +691,11 @@ MELT_K, MELT_R0 = 100.0, 0.7
 MELT_BOND = f"bond_style harmonic\nbond_coeff 1 {MELT_K} {MELT_R0}"
 
 
-def melt_input(args, integrator, steps, dt, thermo, seed=2024, extra=""):
-    data = os.path.join(args.work, "melt.data")
+def melt_input(args, integrator, steps, dt, thermo, seed=2024, extra="", data="melt-eq.data"):
+    """The melt from `data` (in args.work) with `integrator`; thermo: step, temperature,
+    pressure, mean bond length and the chains' mean R_g^2 (compute gyration/chunk, which
+    unwraps the beads by their image flags)."""
+    data = os.path.join(args.work, data)
     return f"""
 units lj
 atom_style bond
@@ -674,44 +708,95 @@ timestep {dt!r}
 velocity all create 1.0 {seed + 1} mom yes dist gaussian
 plugin load {args.plugin}
 {integrator}
-{extra}
 compute bonds all bond/local dist
 compute bond all reduce ave c_bonds inputs local
-thermo_style custom step temp press c_bond
+compute mol all chunk/atom molecule
+compute rg all gyration/chunk mol
+variable rg2 vector c_rg*c_rg
+variable mrg2 equal ave(v_rg2)
+{extra}
+thermo_style custom step temp press c_bond v_mrg2
 thermo_modify format float %.17g norm no
 thermo {thermo}
 run {steps}
 """
 
 
+def melt_start(args, native, dt, steps=4000):
+    """The melt's start, shared by every engine: melt_data's random walks, whose <R_g^2> LAMMPS
+    must read back at step 0 to 1e-9 (it unwraps the wrapped beads by the image flags
+    read_data gave them), run by LAMMPS (`native`) for `steps` steps (40 time units: R_g^2
+    relaxes from the walks' 0.82 to ~1.05, its integrated correlation time 6.5 time units,
+    measured on a run of 300) and written by write_data twice: melt-eq.data without
+    coefficients, for the LAMMPS inputs that define their own styles, and the file returned,
+    with pair ij coefficients (`PairIJ Coeffs # dpd`, `Bond Coeffs # harmonic`), for `dpd run
+    --init`. None if LAMMPS failed."""
+    walks = melt_data(os.path.join(args.work, "melt.data"))
+    mine = os.path.join(args.work, "melt-eq-dpd.data")
+    extra = f"write_data {os.path.join(args.work, 'melt-eq.data')} nocoeff\nwrite_data {mine} pair ij\n"
+    text = melt_input(args, native, steps, dt, steps, data="melt.data") + extra
+    code, out = run_lammps(args, text, 1, "melt-start")
+    rows = thermo_rows(out) if code == 0 else []
+    check(bool(rows) and abs(rows[0][4] - walks) < 1e-9 * walks,
+          f"melt: LAMMPS's <R_g^2> of the random walks at step 0 "
+          f"{rows[0][4] if rows else out[-2000:]!r} is theirs, {walks!r}")
+    return mine if rows else None
+
+
+def chain_mean(path):
+    """The mean over chains of the last block of a `fix ave/time ... mode vector` file (one
+    row per chain) and its standard error from the spread of the chains: the chains of a melt
+    are independent to a good approximation, so unlike block averages of the chains' mean this
+    needs no bound on R_g^2's correlation time (6.5 time units; 3-unit blocks underestimated
+    its error by 2x)."""
+    with open(path) as f:
+        lines = [line.split() for line in f if not line.startswith("#")]
+    # The block's rows are numbered 1 to the chain count: the last line's number is the count.
+    values = [float(w[1]) for w in lines[-int(lines[-1][0]):]]
+    m = sum(values) / len(values)
+    var = sum((x - m) ** 2 for x in values) / (len(values) - 1)
+    return m, math.sqrt(var / len(values))
+
+
+def melt_line(dt, name, stats):
+    """Print a melt run's mean bond length, pressure and <R_g^2> with their errors."""
+    print(f"     melt dt={dt}: {name}: " + ", ".join(
+        f"{key} {m:.5f} +- {e:.5f}" for key, (m, e) in zip(("bond length", "pressure", "R_g^2"), stats)),
+        flush=True)
+
+
 def melt(args):
     """Force groups on a bead-spring melt (45 chains of 10 beads, 450 beads, 1 rank, gamma 4.5,
-    dt = 0.01, 500 + 6000 steps, thermo every 10; errors from 20 block means of 3 time units,
-    longer than the bond length's and the pressure's correlation times):
+    dt = 0.01, from melt_start's equilibrated state, 500 + 6000 steps, thermo every 10; errors
+    of the mean bond length and pressure from 20 block means of 3 time units, longer than their
+    correlation times; of <R_g^2> from the spread of the chains, chain_mean):
     - the plugin's ABOBA (B applies pair dpd/soft and the bonds) and MTS ABOBA (B[pair] on the
       outer step, B[bond] on two inner steps per half drift) against LAMMPS's pair dpd + bond
-      harmonic + fix nve: mean bond length and pressure (with the fix's pair impulses in the
-      virial, as pair dpd tallies its friction and noise) within 4 combined errors. Measured
-      biases at this dt lie well inside (the three agree within ~2 sigma); a B[bond] that also
-      applied the pair forces, or inner kicks of the wrong length, moves the bond length by
-      many errors;
+      harmonic + fix nve: mean bond length, pressure (with the fix's pair impulses in the
+      virial, as pair dpd tallies its friction and noise) and the chains' <R_g^2> within 4
+      combined errors. Measured biases at this dt lie well inside (the three agree within ~2
+      sigma); a B[bond] that also applied the pair forces, or inner kicks of the wrong length,
+      moves the bond length by many errors; leaving out the pair forces within a chain moves
+      <R_g^2> from 1.05 to 0.25 (LAMMPS with neigh_modify exclude molecule/intra, by hand)
+      against a combined error of ~0.02;
     - SAS with the bonds on B[bond] (T beside B[bond]) against the same;
-    - `dpd run` (VV and ABOBA, its own engine) from the same chains and coefficients, read from
-      a LAMMPS data file, against the same (pressure: the virial of the conservative and bond
-      forces, whose friction and noise parts average to zero at equilibrium);
+    - `dpd run` (VV and ABOBA, its own engine; 8 runs, the error from their spread) from the
+      same state and coefficients, LAMMPS's write_data read by `dpd run --init` (which takes
+      the file's particle count and box), against the same (pressure: the virial of the
+      conservative and bond forces, whose friction and noise parts average to zero at
+      equilibrium);
     - the r-RESPA splitting with inner count 1, O(1/2) B[pair](1/2) (B[bond](1/2) A
       B[bond](1/2))^1 B[pair](1/2) O(1/2), repeats OBABO bitwise (200 steps, 17 digits);
     - refusals: B[bond] without bonded styles, a force-adding fix beside a grouped scheme, and T
       with bonds in a scheme without B[bond], each named."""
-    melt_data(os.path.join(args.work, "melt.data"))
-    mine = os.path.join(args.work, "melt-dpd.data")
-    melt_data(mine, coeffs=f"PairIJ Coeffs # dpd\n\n1 1 25.0 {GAMMA} 1.0\n\n"
-                           f"Bond Coeffs # harmonic\n\n1 {MELT_K} {MELT_R0}\n\n")
     dt, equil, steps = 0.01, 500, 6000
+    native = f"pair_style dpd 1.0 1.0 4321\npair_coeff 1 1 25.0 {GAMMA} 1.0\n{MELT_BOND}\nfix 1 all nve"
+    mine = melt_start(args, native, dt)
+    if mine is None:
+        return
     soft = "pair_style dpd/soft 1.0\npair_coeff 1 1 25.0\n" + MELT_BOND + "\n"
     runs = {
-        "LAMMPS pair dpd + fix nve": f"pair_style dpd 1.0 1.0 4321\npair_coeff 1 1 25.0 {GAMMA} 1.0\n"
-                                     f"{MELT_BOND}\nfix 1 all nve",
+        "LAMMPS pair dpd + fix nve": native,
         "plugin aboba": soft + f"fix 1 all dpd/split aboba 1.0 {GAMMA} 1.0 4321\nfix_modify 1 virial yes",
         "plugin MTS aboba": soft + f"fix 1 all dpd/split {identifier(MTS_ABOBA)} 1.0 {GAMMA} 1.0 4321\n"
                                    "fix_modify 1 virial yes",
@@ -719,27 +804,29 @@ def melt(args):
                                           "fix_modify 1 virial yes",
     }
     results = {}
+    chains = os.path.join(args.work, "melt-chains.txt")
+    # Each chain's R_g^2 averaged over the steps after `equil` (a sample every 10 steps).
+    per_chain = f"fix rg2 all ave/time 10 {steps // 10} {equil + steps} v_rg2 mode vector file {chains}"
     for name, integrator in runs.items():
-        code, out = run_lammps(args, melt_input(args, integrator, equil + steps, dt, 10), 1, "melt")
+        text = melt_input(args, integrator, equil + steps, dt, 10, extra=per_chain)
+        code, out = run_lammps(args, text, 1, "melt")
         rows = [r for r in thermo_rows(out) if r[0] > equil]
         if code != 0 or not rows:
             check(False, f"melt, {name} ran: {out[-2000:]}")
             return
-        results[name] = [mean_and_error([r[c] for r in rows]) for c in (3, 2)]
-        print(f"     melt dt={dt}: {name}: bond length {results[name][0][0]:.5f} +- {results[name][0][1]:.5f}, "
-              f"pressure {results[name][1][0]:.4f} +- {results[name][1][1]:.4f}", flush=True)
+        results[name] = [mean_and_error([r[c] for r in rows]) for c in (3, 2)] + [chain_mean(chains)]
+        melt_line(dt, name, results[name])
     # `dpd run` from the same chains: each run averages its last 80 %, the errors from the spread
     # of the runs' means.
     for scheme in ("vv", "aboba"):
         name = f"dpd run {scheme}"
         results[name] = dpd_run(args, scheme, dt, dt * (equil + steps), args.dpd_runs,
-                                keys=("chains/bond_length", "pressure"),
+                                keys=("chains/bond_length", "pressure", "chains/gyration_squared"),
                                 scene=["--init", mine])
-        print(f"     melt dt={dt}: {name}: bond length {results[name][0][0]:.5f} +- {results[name][0][1]:.5f}, "
-              f"pressure {results[name][1][0]:.4f} +- {results[name][1][1]:.4f}", flush=True)
+        melt_line(dt, name, results[name])
     ref = results.pop("LAMMPS pair dpd + fix nve")
     for name, mine in results.items():
-        for k, key in enumerate(("mean bond length", "pressure")):
+        for k, key in enumerate(("mean bond length", "pressure", "<R_g^2>")):
             check(agree(mine[k], ref[k]), f"melt: {name} {key} {mine[k][0]:.5f} +- {mine[k][1]:.5f} vs LAMMPS "
                                           f"{ref[k][0]:.5f} +- {ref[k][1]:.5f} ({sigmas_apart(mine[k], ref[k]):.1f} sigma)")
     rows = {}
