@@ -104,17 +104,21 @@ fn per_species(
     })
 }
 
-/// The relative error of the species whose value in `values` differs most from its value in
-/// `reference`, with its sign.
-fn largest_relative(
-    values: Option<&BTreeMap<String, f64>>,
-    reference: Option<&BTreeMap<String, f64>>,
-) -> Option<f64> {
-    let (values, reference) = (values?, reference?);
+/// The species whose value in `values` differs most, relatively, from its value in
+/// `reference`, with that signed relative error.
+pub fn worst_species<'a>(
+    values: &'a BTreeMap<String, f64>,
+    reference: &BTreeMap<String, f64>,
+) -> Option<(&'a str, f64)> {
     values
         .iter()
-        .filter_map(|(name, &v)| relative(Some(v), reference.get(name).copied()))
-        .max_by(|a, b| a.abs().total_cmp(&b.abs()))
+        .filter_map(|(name, &v)| {
+            Some((
+                name.as_str(),
+                relative(Some(v), reference.get(name).copied())?,
+            ))
+        })
+        .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
 }
 
 /// The relative error of an observable in a row.
@@ -186,10 +190,12 @@ impl Aggregate {
         self.potential_energy_error = relative(self.potential_energy, baseline.potential_energy);
         self.pressure_error = relative(self.pressure, baseline.pressure);
         self.bond_length_error = relative(self.bond_length, baseline.bond_length);
-        self.like_neighbours_error = largest_relative(
-            self.like_neighbours.as_ref(),
-            baseline.like_neighbours.as_ref(),
-        );
+        self.like_neighbours_error = self
+            .like_neighbours
+            .as_ref()
+            .zip(baseline.like_neighbours.as_ref())
+            .and_then(|(values, reference)| worst_species(values, reference))
+            .map(|(_, e)| e);
         self.shear_viscosity_relative_error =
             relative(self.shear_viscosity(), baseline.shear_viscosity());
     }

@@ -1,12 +1,13 @@
 //! SVG plots of a sweep: relative errors against dt on log-log axes with a second-order guide
 //! line, and radial distribution functions overlaid per dt; slab profiles of one run.
 
-use super::aggregate::Aggregate;
+use super::aggregate::{worst_species, Aggregate};
 use super::result::RunResult;
 use super::scene::Observable;
 use super::sweep::{SweepResults, THRESHOLDS};
 use dpd_core::observe::ProfileRow;
 use plotters::prelude::*;
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 type Error = Box<dyn std::error::Error>;
@@ -49,6 +50,16 @@ fn against_baseline(
     Some(s.hypot(s_b.unwrap_or(0.0)) / b.abs())
 }
 
+/// [`against_baseline`] for the mean and standard error `of` a row and of the baseline.
+fn beside_baseline(
+    r: &Aggregate,
+    c: &Context,
+    of: fn(&Aggregate) -> (Option<f64>, Option<f64>),
+) -> Option<f64> {
+    let ((x, s), (b, s_b)) = (of(r), of(c.baseline?));
+    against_baseline(x, s, b, s_b)
+}
+
 const T_C: Panel = Panel {
     title: "|T_C error|",
     error: |r| r.configurational_temperature_error,
@@ -76,22 +87,42 @@ const PANELS: [Panel; 3] = [
     Panel {
         title: "|U error| vs baseline",
         error: |r| r.potential_energy_error,
-        stderr: |r, c| {
-            let b = c.baseline?;
-            against_baseline(
-                r.potential_energy,
-                r.potential_energy_stderr,
-                b.potential_energy,
-                b.potential_energy_stderr,
-            )
-        },
+        stderr: |r, c| beside_baseline(r, c, |a| (a.potential_energy, a.potential_energy_stderr)),
     },
     Panel {
         title: "|P error| vs baseline",
         error: |r| r.pressure_error,
+        stderr: |r, c| beside_baseline(r, c, |a| (a.pressure, a.pressure_stderr)),
+    },
+];
+
+/// Panels drawn where some row has their error: the mean bond length (with bonds) and the
+/// like-neighbour fraction (with `like_neighbours`; the species that errs most, its bar that
+/// species' standard error).
+const MEASURED_PANELS: [Panel; 2] = [
+    Panel {
+        title: "|bond length error| vs baseline",
+        error: |r| r.bond_length_error,
+        stderr: |r, c| beside_baseline(r, c, |a| (a.bond_length, a.bond_length_stderr)),
+    },
+    Panel {
+        title: "|like-neighbour error| vs baseline",
+        error: |r| r.like_neighbours_error,
         stderr: |r, c| {
             let b = c.baseline?;
-            against_baseline(r.pressure, r.pressure_stderr, b.pressure, b.pressure_stderr)
+            let (values, reference) = (r.like_neighbours.as_ref()?, b.like_neighbours.as_ref()?);
+            let (name, _) = worst_species(values, reference)?;
+            let spread = |m: &Option<BTreeMap<String, f64>>| m.as_ref()?.get(name).copied();
+            let (s, s_b) = (
+                spread(&r.like_neighbours_stderr),
+                spread(&b.like_neighbours_stderr),
+            );
+            against_baseline(
+                values.get(name).copied(),
+                s,
+                reference.get(name).copied(),
+                s_b,
+            )
         },
     },
 ];
@@ -119,8 +150,9 @@ fn log_ticks(lo: f64, hi: f64) -> Vec<f64> {
         .collect()
 }
 
-/// Write `errors.svg` (four error panels: the sweep's observable, T_K, U, P) and one `rdf-<scheme>.svg` per scheme with RDF data
-/// into `dir`; returns the files written.
+/// Write `errors.svg` (error panels: the sweep's observable, T_K, U, P, and where measured the
+/// mean bond length and the like-neighbour fraction) and one `rdf-<scheme>.svg` per scheme
+/// with RDF data into `dir`; returns the files written.
 pub fn write_plots(results: &SweepResults, dir: &Path) -> Result<Vec<PathBuf>, Error> {
     let mut written = vec![dir.join("errors.svg")];
     errors(results, &written[0])?;
@@ -149,15 +181,23 @@ fn file_name(scheme: &str) -> String {
 }
 
 fn errors(results: &SweepResults, path: &Path) -> Result<(), Error> {
-    let root = SVGBackend::new(path, (1200, 900)).into_drawing_area();
-    root.fill(&WHITE)?;
     let observable = match results.observable {
         Observable::ConfigurationalTemperature => T_C,
         Observable::Viscosity => ETA,
     };
-    let panels = std::iter::once(observable).chain(PANELS);
-    for (area, panel) in root.split_evenly((2, 2)).iter().zip(panels) {
-        error_panel(area, results, &panel)?;
+    let measured = MEASURED_PANELS
+        .into_iter()
+        .filter(|p| results.rows.iter().any(|r| (p.error)(r).is_some()));
+    let panels: Vec<Panel> = std::iter::once(observable)
+        .chain(PANELS)
+        .chain(measured)
+        .collect();
+    // Two rows of panels 600 x 450 each.
+    let columns = panels.len().div_ceil(2);
+    let root = SVGBackend::new(path, (600 * columns as u32, 900)).into_drawing_area();
+    root.fill(&WHITE)?;
+    for (area, panel) in root.split_evenly((2, columns)).iter().zip(&panels) {
+        error_panel(area, results, panel)?;
     }
     root.present()?;
     Ok(())
@@ -427,6 +467,36 @@ mod tests {
             vec![0.02, 0.03, 0.05, 0.07, 0.1, 0.15, 0.2]
         );
         assert_eq!(log_ticks(0.001, 1.0).len(), 10);
+    }
+
+    /// The like-neighbour panel's bar is that of the species whose fraction errs most.
+    #[test]
+    fn the_like_neighbour_bar_is_the_worst_species_one() {
+        let map = |a: f64, b: f64| Some(BTreeMap::from([("A".into(), a), ("B".into(), b)]));
+        let row = |f, s| Aggregate {
+            like_neighbours: f,
+            like_neighbours_stderr: s,
+            ..Aggregate::of(&[], 1.0)
+        };
+        let baseline = row(map(0.5, 0.8), map(0.003, 0.004));
+        // A errs +2 %, B -5 %: B's bar, hypot(0.03, 0.004) / 0.8.
+        let r = row(map(0.51, 0.76), map(0.01, 0.03));
+        let context = Context {
+            kbt: 1.0,
+            baseline: Some(&baseline),
+        };
+        let s = (MEASURED_PANELS[1].stderr)(&r, &context).unwrap();
+        assert!((s - 0.03f64.hypot(0.004) / 0.8).abs() < 1e-15, "{s}");
+        assert_eq!(
+            (MEASURED_PANELS[1].stderr)(
+                &baseline,
+                &Context {
+                    kbt: 1.0,
+                    baseline: None
+                }
+            ),
+            None
+        );
     }
 
     #[test]
