@@ -154,7 +154,10 @@ fn a_data_file_written_by_a_run_starts_the_next() {
         &text.replace("1 1 25 4.5 1", "1 1 25 x 1"),
     );
     let out = dpd(dir.path(), &["run", "--scene", &scene, "--init", &bad]);
-    refused(&out, "line 19: `x` is not a finite number");
+    refused(
+        &out,
+        "line 19 (section `PairIJ Coeffs`): `x` is not a finite number",
+    );
     let hot = write(
         dir.path(),
         "hot.data",
@@ -294,4 +297,59 @@ fn a_melt_runs_an_mts_scheme_and_restarts_from_its_data_file() {
         &out,
         "it applies B[bond], the bonded forces (bonds and angles), which this system",
     );
+}
+
+/// A FENE bond stretched to its R0 is a blow-up whose error names the bond, and no other result
+/// is lost: a sweep from dt = 0.01 (stable) to 0.3 (where the melt blows up at its first step)
+/// keeps both points in its results file, and `dpd run --runs 2 --json` at 0.3 reports each
+/// run with its bond.
+#[test]
+fn a_fene_overstretch_names_the_bond_and_loses_no_other_result() {
+    let dir = tempfile::tempdir().unwrap();
+    let melt = write(
+        dir.path(),
+        "fene.toml",
+        &format!(
+            "{TINY}[[bond_types]]\nname = \"f\"\nstyle = \"fene\"\nk = 30.0\nr_max = 1.5\n\
+             [[molecules]]\nlength = 5\ncount = 10\nbond = \"f\"\n"
+        ),
+    );
+    let sweep = [
+        "sweep",
+        "--scene",
+        &melt,
+        "--schemes",
+        "vv",
+        "--dt-min",
+        "0.01",
+        "--dt-max",
+        "0.3",
+        "--dt-factor",
+        "30",
+        "--json",
+        "s.json",
+    ];
+    let out = dpd(dir.path(), &sweep);
+    assert!(out.status.success(), "{out:?}");
+    let text = std::fs::read_to_string(dir.path().join("s.json")).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let points = v["points"].as_array().unwrap();
+    let at = |dt: f64| {
+        let found = points.iter().find(|p| p["scheme"] == "vv" && p["dt"] == dt);
+        found.unwrap_or_else(|| panic!("no vv point at dt = {dt}: {v}"))
+    };
+    assert_eq!(at(0.01)["stable"], true);
+    assert_eq!(at(0.01)["chains"]["chains"], 10);
+    let fene = "reached length";
+    let error = at(0.3)["error"].as_str().unwrap();
+    assert!(error.contains("bond ") && error.contains(fene), "{error}");
+    let run = [
+        "run", "--scene", &melt, "--scheme", "vv", "--dt", "0.3", "--runs", "2", "--json",
+    ];
+    let v = json(&dpd(dir.path(), &run));
+    let results = v["results"].as_array().unwrap();
+    assert_eq!(results.len(), 2, "{v}");
+    for r in results {
+        assert!(r["error"].as_str().unwrap().contains(fene), "{r}");
+    }
 }

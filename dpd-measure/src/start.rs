@@ -25,6 +25,27 @@ pub struct Start {
     pub frame: Frame,
     pub coefficients: Option<PairCoefficients>,
     pub topology: Option<Topology>,
+    /// The file's id and atom ids of each bond, in the topology's order (a data file's; empty
+    /// for a GSD frame), to name a bond as the file does ([`name_bond`]).
+    pub bond_ids: Vec<(u64, [u64; 2])>,
+}
+
+/// `e`, from building a system that started from a data file whose bonds are `bond_ids`, with
+/// the file's bond named where `e` names one by its index (`bonds[k]`: a FENE bond at or
+/// beyond R0 at the start).
+pub fn name_bond(e: ParamError, bond_ids: &[(u64, [u64; 2])]) -> ParamError {
+    let index = e
+        .field
+        .strip_prefix("bonds[")
+        .and_then(|k| k.strip_suffix(']'));
+    match index.and_then(|k| bond_ids.get(k.parse::<usize>().ok()?)) {
+        Some((id, [a, b])) => ParamError {
+            field: format!("init: Bonds: bond {id}"),
+            value: format!("atoms {a} and {b} of the file ({})", e.value),
+            allowed: e.allowed,
+        },
+        None => e,
+    }
 }
 
 impl InitSpec {
@@ -107,6 +128,7 @@ impl InitSpec {
                     frame,
                     coefficients,
                     topology,
+                    bond_ids: data.bonds.iter().map(|b| (b.id, b.atoms)).collect(),
                 };
                 ("the file".to_string(), start)
             }
@@ -123,6 +145,7 @@ impl InitSpec {
                     frame,
                     coefficients: None,
                     topology: None,
+                    bond_ids: Vec::new(),
                 };
                 (format!("frame {k}"), start)
             }

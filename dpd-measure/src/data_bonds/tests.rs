@@ -134,5 +134,39 @@ fn bad_bonded_sections_are_named() {
         "{e}"
     );
     let e = error("\n1 1 1 2\n", "\n1 1 1 999\n").unwrap_err();
-    assert!(e.starts_with("line "), "{e}");
+    assert!(
+        e.starts_with("line ") && e.contains("(section `Bonds`)"),
+        "{e}"
+    );
+}
+
+/// A data file whose FENE bond starts at or beyond R0 is refused naming the bond as the file
+/// does, by its id and atom ids (here renumbered, so that they are not the engine's indices).
+#[test]
+fn a_fene_bond_stretched_in_the_file_is_named_by_its_id() {
+    let melt = "n = 200\n[[bond_types]]\nname = \"f\"\nstyle = \"fene\"\nk = 30.0\nr_max = 1.5\n\
+                [[molecules]]\nlength = 5\ncount = 10\nbond = \"f\"\n";
+    let scene = Scene::from_toml(melt, "t").unwrap();
+    let sys = scene.system(0.05, 2).unwrap();
+    let mut data = data_of(&sys, &scene.type_names(1), "t").unwrap();
+    for b in &mut data.bonds {
+        b.id += 100;
+    }
+    let first = data.atoms.iter().find(|a| a.id == 1).unwrap().position;
+    let second = data.atoms.iter_mut().find(|a| a.id == 2).unwrap();
+    second.position = [first[0] + 1.55, first[1], first[2]];
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("stretched.data");
+    data.write(&file).unwrap();
+    let init = format!("init = {:?}\n", file.display().to_string());
+    let e = Scene::from_toml(&init, "t")
+        .unwrap()
+        .system(0.05, 1)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with("invalid init: Bonds: bond 101 = atoms 1 and 2 of the file (ids 0, 1 at")
+            && e.ends_with("a FENE bond must start shorter than its R0"),
+        "{e}"
+    );
 }

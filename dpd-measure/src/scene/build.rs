@@ -5,7 +5,7 @@ use super::molecules::{ChainPlan, Context};
 use super::{check, Scene};
 use crate::chains;
 use crate::data_file::same_coefficients;
-use crate::start::{initial_state, InitSpec, Origin};
+use crate::start::{initial_state, name_bond, InitSpec, Origin};
 use dpd_core::bonded::{Topology, TopologyBuilder};
 use dpd_core::init::{freeze_outside, maxwell_momenta, uniform_positions};
 use dpd_core::{ParamError, Params, System, Vec3};
@@ -23,7 +23,7 @@ impl Scene {
         let n = geometry.particles();
         let type_masses = self.type_masses();
         let names = self.species.names();
-        let (state, params, topology) = match &geometry.init {
+        let (state, params, topology, bond_ids) = match &geometry.init {
             Some(init) => {
                 let lengths = bx.lengths().into();
                 let start = InitSpec::parse(init)?.read(n, lengths, &names)?;
@@ -42,7 +42,7 @@ impl Scene {
                 masses.resize(params.types(), physics.mass);
                 let state = initial_state(&start.frame, &masses)?;
                 let topology = self.init_topology(start.topology, &start.frame)?;
-                (state, params, topology)
+                (state, params, topology, start.bond_ids)
             }
             None => {
                 let plans = self.chain_plans()?;
@@ -55,7 +55,8 @@ impl Scene {
                 let mut q = chains::random_walks(&plans, &bx, seed);
                 q.extend(uniform_positions(&bx, n - q.len(), seed));
                 let p = maxwell_momenta(&masses, physics.kbt, seed);
-                ((q, p, masses, kinds), self.params()?, self.topology()?)
+                let state = (q, p, masses, kinds);
+                (state, self.params()?, self.topology()?, Vec::new())
             }
         };
         let (q, mut p, masses, kinds) = state;
@@ -79,7 +80,10 @@ impl Scene {
         if let Some(g) = physics.body_force {
             builder = builder.body_force(Vec3::new(g, 0.0, 0.0));
         }
-        builder.momenta(p).build()
+        builder
+            .momenta(p)
+            .build()
+            .map_err(|e| name_bond(e, &bond_ids))
     }
 
     /// The scene's chains resolved (none without `[[molecules]]`), every molecules key

@@ -139,11 +139,13 @@ const SECTIONS: [&str; 10] = [
     "Angle Coeffs",
 ];
 
-/// A line of the file: its number (from 1), its text without the comment, and the comment.
+/// A line of the file: its number (from 1), its text without the comment, the comment, and
+/// the section it belongs to ("" in the header).
 struct Line<'a> {
     number: usize,
     text: &'a str,
     comment: &'a str,
+    section: &'a str,
 }
 
 impl DataFile {
@@ -169,6 +171,7 @@ impl DataFile {
                 number: k + 1,
                 text: text.trim(),
                 comment: comment.trim(),
+                section: "",
             }
         });
         let title = lines.next().map_or("", |l| l.text).to_string();
@@ -213,7 +216,10 @@ impl DataFile {
             seen.push(name);
             let mut body = Vec::new();
             while let Some(line) = lines.next_if(|l| !is_section(l.text)) {
-                body.push(line);
+                body.push(Line {
+                    section: name,
+                    ..line
+                });
             }
             let at = |what: &str| format!("section `{name}` (line {}): {what}", head.number);
             let expected = counts.rows(name, &file);
@@ -615,8 +621,13 @@ fn is_section(text: &str) -> bool {
     text.starts_with(|c: char| c.is_ascii_alphabetic())
 }
 
+/// The error `what` of line `l`, naming its number and section and quoting it.
 fn at(l: &Line, what: &str) -> String {
-    format!("line {}: {what}: `{}`", l.number, l.text)
+    let part = match l.section {
+        "" => "the header".to_string(),
+        name => format!("section `{name}`"),
+    };
+    format!("line {} ({part}): {what}: `{}`", l.number, l.text)
 }
 
 /// The numbers of `l` in the columns `range`.

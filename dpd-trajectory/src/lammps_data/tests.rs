@@ -148,36 +148,40 @@ fn the_atom_style_follows_the_comment_or_the_column_count() {
 #[test]
 fn malformed_files_name_the_section_and_line() {
     for (from, to, message) in [
-        ("2 atom types", "2 atom kinds", "line 4: is no header line"),
+        (
+            "2 atom types",
+            "2 atom kinds",
+            "line 4 (the header): is no header line",
+        ),
         (
             "2.5 2.5 xlo",
             "2.5 -3 xlo",
-            "line 10: a box bound needs lo < hi",
+            "line 10 (the header): a box bound needs lo < hi",
         ),
         (
             "2 2.5\n",
             "3 2.5\n",
-            "line 22: atom type 3 is not in 1 to 2",
+            "line 22 (section `Masses`): atom type 3 is not in 1 to 2",
         ),
         (
             "2 2 25 4.5\n",
             "2 2 25 x\n",
-            "line 28: `x` is not a finite number",
+            "line 28 (section `PairIJ Coeffs`): `x` is not a finite number",
         ),
         (
             "1 1 1 0 -2",
             "1 1 1 0 -2 9",
-            "line 40: 11 columns; atom style full has 7",
+            "line 40 (section `Atoms`): 11 columns; atom style full has 7",
         ),
         (
             "2 1 2 3\n",
             "2 1 3 3\n",
-            "line 53: bond 2 names atom 3 twice: `2 1 3 3`",
+            "line 53 (section `Bonds`): bond 2 names atom 3 twice: `2 1 3 3`",
         ),
         (
             "2 1 2 3\n",
             "2 1 2 4\n",
-            "line 53: bond 2 names atom 4, which is not in Atoms: `2 1 2 4`",
+            "line 53 (section `Bonds`): bond 2 names atom 4, which is not in Atoms: `2 1 2 4`",
         ),
         (
             "Angles\n",
@@ -197,7 +201,7 @@ fn malformed_files_name_the_section_and_line() {
         (
             "1 4 0\n",
             "2 4 0\n",
-            "line 32: bond type 2 is not in 1 to 1",
+            "line 32 (section `Bond Coeffs`): bond type 2 is not in 1 to 1",
         ),
         (
             "3 1 2 0.5",
@@ -207,7 +211,7 @@ fn malformed_files_name_the_section_and_line() {
         (
             "1 1 1 2\n2 1 2 3\n",
             "1 1 1 2 3\n2 1 2 3\n",
-            "line 52: a bond line is `id type` and 2 atom ids",
+            "line 52 (section `Bonds`): a bond line is `id type` and 2 atom ids",
         ),
     ] {
         assert!(FULL.contains(from), "{from}");
@@ -218,5 +222,8 @@ fn malformed_files_name_the_section_and_line() {
     let path = dir.path().join("bad.data");
     std::fs::write(&path, FULL.replace("2 atom types", "2 atom kinds")).unwrap();
     let e = DataFile::read(&path).unwrap_err().to_string();
-    assert!(e.starts_with(&format!("{}: line 4", path.display())), "{e}");
+    assert!(
+        e.starts_with(&format!("{}: line 4 (the header)", path.display())),
+        "{e}"
+    );
 }
