@@ -722,7 +722,7 @@ run {steps}
 """
 
 
-def melt_start(args, native, dt, steps=4000):
+def melt_start(args, native, dt, steps=4000, seed=11):
     """The melt's start, shared by every engine: melt_data's random walks, whose <R_g^2> LAMMPS
     must read back at step 0 to 1e-9 (it unwraps the wrapped beads by the image flags
     read_data gave them), run by LAMMPS (`native`) for `steps` steps (40 time units: R_g^2
@@ -730,8 +730,8 @@ def melt_start(args, native, dt, steps=4000):
     measured on a run of 300) and written by write_data twice: melt-eq.data without
     coefficients, for the LAMMPS inputs that define their own styles, and the file returned,
     with pair ij coefficients (`PairIJ Coeffs # dpd`, `Bond Coeffs # harmonic`), for `dpd run
-    --init`. None if LAMMPS failed."""
-    walks = melt_data(os.path.join(args.work, "melt.data"))
+    --init`; `seed`, melt_data's. None if LAMMPS failed."""
+    walks = melt_data(os.path.join(args.work, "melt.data"), seed=seed)
     mine = os.path.join(args.work, "melt-eq-dpd.data")
     extra = f"write_data {os.path.join(args.work, 'melt-eq.data')} nocoeff\nwrite_data {mine} pair ij\n"
     text = melt_input(args, native, steps, dt, steps, data="melt.data") + extra
@@ -758,6 +758,48 @@ def chain_mean(path):
     return m, math.sqrt(var / len(values))
 
 
+def melt_measure(args, name, integrator, dt, equil, steps, seed=2024):
+    """A LAMMPS run of the melt from melt-eq.data: mean bond length and pressure (block
+    errors) and <R_g^2> (chain_mean) over the steps after `equil`, printed; None if it failed."""
+    chains = os.path.join(args.work, "melt-chains.txt")
+    # Each chain's R_g^2 averaged over the steps after `equil` (a sample every 10 steps).
+    per_chain = f"fix rg2 all ave/time 10 {steps // 10} {equil + steps} v_rg2 mode vector file {chains}"
+    text = melt_input(args, integrator, equil + steps, dt, 10, seed=seed, extra=per_chain)
+    code, out = run_lammps(args, text, 1, "melt")
+    rows = [r for r in thermo_rows(out) if r[0] > equil]
+    if code != 0 or not rows:
+        check(False, f"melt, {name} ran: {out[-2000:]}")
+        return None
+    stats = [mean_and_error([r[c] for r in rows]) for c in (3, 2)] + [chain_mean(chains)]
+    melt_line(dt, name, stats)
+    return stats
+
+
+def melt_spread(args, runs=8):
+    """By hand (docs/lammps-checks.md): whether chain_mean's error is that of a run's <R_g^2>,
+    from `runs` LAMMPS runs (pair dpd + fix nve) as melt's, each from its own random walks and
+    seeds: the spread of their means against the mean of their chain errors. Then the size of
+    a wrong engine's error: the melt with the pair forces within a chain left out (neigh_modify
+    exclude molecule/intra all)."""
+    dt, equil, steps = 0.01, 500, 6000
+    means, errors = [], []
+    for k in range(1, runs + 1):
+        native = f"pair_style dpd 1.0 1.0 {4321 + k}\npair_coeff 1 1 25.0 {GAMMA} 1.0\n{MELT_BOND}\nfix 1 all nve"
+        if melt_start(args, native, dt, seed=100 + k) is None:
+            return
+        stats = melt_measure(args, f"LAMMPS, walks {100 + k}", native, dt, equil, steps, seed=3024 + k)
+        if stats is None:
+            return
+        means.append(stats[2][0])
+        errors.append(stats[2][1])
+    m = sum(means) / runs
+    spread = math.sqrt(sum((x - m) ** 2 for x in means) / (runs - 1))
+    print(f"     <R_g^2> over {runs} runs: mean {m:.4f}, spread of the runs {spread:.4f}, "
+          f"mean chain error {sum(errors) / runs:.4f}", flush=True)
+    native += "\nneigh_modify exclude molecule/intra all"
+    melt_measure(args, "LAMMPS without pair forces within a chain", native, dt, equil, steps)
+
+
 def melt_line(dt, name, stats):
     """Print a melt run's mean bond length, pressure and <R_g^2> with their errors."""
     print(f"     melt dt={dt}: {name}: " + ", ".join(
@@ -777,8 +819,7 @@ def melt(args):
       combined errors. Measured biases at this dt lie well inside (the three agree within ~2
       sigma); a B[bond] that also applied the pair forces, or inner kicks of the wrong length,
       moves the bond length by many errors; leaving out the pair forces within a chain moves
-      <R_g^2> from 1.05 to 0.25 (LAMMPS with neigh_modify exclude molecule/intra, by hand)
-      against a combined error of ~0.02;
+      <R_g^2> from 1.05 to 0.25 (melt_spread) against a combined error of ~0.02;
     - SAS with the bonds on B[bond] (T beside B[bond]) against the same;
     - `dpd run` (VV and ABOBA, its own engine; 8 runs, the error from their spread) from the
       same state and coefficients, LAMMPS's write_data read by `dpd run --init` (which takes
@@ -804,18 +845,10 @@ def melt(args):
                                           "fix_modify 1 virial yes",
     }
     results = {}
-    chains = os.path.join(args.work, "melt-chains.txt")
-    # Each chain's R_g^2 averaged over the steps after `equil` (a sample every 10 steps).
-    per_chain = f"fix rg2 all ave/time 10 {steps // 10} {equil + steps} v_rg2 mode vector file {chains}"
     for name, integrator in runs.items():
-        text = melt_input(args, integrator, equil + steps, dt, 10, extra=per_chain)
-        code, out = run_lammps(args, text, 1, "melt")
-        rows = [r for r in thermo_rows(out) if r[0] > equil]
-        if code != 0 or not rows:
-            check(False, f"melt, {name} ran: {out[-2000:]}")
+        results[name] = melt_measure(args, name, integrator, dt, equil, steps)
+        if results[name] is None:
             return
-        results[name] = [mean_and_error([r[c] for r in rows]) for c in (3, 2)] + [chain_mean(chains)]
-        melt_line(dt, name, results[name])
     # `dpd run` from the same chains: each run averages its last 80 %, the errors from the spread
     # of the runs' means.
     for scheme in ("vv", "aboba"):
@@ -1017,7 +1050,7 @@ def main():
                    help="temp: measure each --scheme's temp/split against dpd run (by hand)")
     p.add_argument("--shear-time", type=float, default=400.0, help="shear: time units per run")
     p.add_argument("--only", choices=["equilibrium", "repeat", "bad", "shear", "soft", "trotter", "pairs", "restart", "temp",
-                            "tally", "data", "melt"],
+                            "tally", "data", "melt", "melt-spread"],
                    action="append")
     args = p.parse_args()
     args.scheme = args.scheme or [k for k in SCHEMES if k != "dpd_s1"]
@@ -1026,7 +1059,7 @@ def main():
     parts = {"bad": bad_input, "repeat": repeat_and_momentum, "equilibrium": equilibrium,
              "shear": shear, "soft": soft_pair, "trotter": trotter, "pairs": per_pair,
              "restart": restart, "temp": temp_split, "tally": tally, "data": data_files,
-             "melt": melt}
+             "melt": melt, "melt-spread": melt_spread}
     for name in args.only or ["bad", "repeat", "equilibrium"]:
         parts[name](args)
     if FAILURES:
