@@ -8,7 +8,7 @@ use crate::pair_coefficients::PairCoefficients;
 use dpd_core::{ParamError, Topology, Vec3};
 use dpd_trajectory::gsd::GsdReader;
 use dpd_trajectory::lammps_data::DataFile;
-use dpd_trajectory::Frame;
+use dpd_trajectory::{Frame, TrajectoryError};
 use std::path::PathBuf;
 
 /// `init = "FILE.gsd[:frame]"` (the frame, default the last) or `init = "FILE.data"`.
@@ -84,7 +84,7 @@ impl InitSpec {
         let bad = |message: String| ParamError::new("init", self.file.display(), message);
         match self.file.extension().and_then(|e| e.to_str()) {
             Some("data") => {
-                let data = DataFile::read(&self.file).map_err(|e| bad(e.to_string()))?;
+                let data = DataFile::read(&self.file).map_err(|e| bad(without_path(e)))?;
                 Ok((data.atoms.len(), data.bounds.map(|[lo, hi]| hi - lo)))
             }
             _ => {
@@ -105,7 +105,7 @@ impl InitSpec {
         let bad = |message: String| ParamError::new("init", self.file.display(), message);
         let (k, start) = match self.file.extension().and_then(|e| e.to_str()) {
             Some("data") => {
-                let data = DataFile::read(&self.file).map_err(|e| bad(e.to_string()))?;
+                let data = DataFile::read(&self.file).map_err(|e| bad(without_path(e)))?;
                 let frame = frame_of(&data).map_err(bad)?;
                 let coefficients = pair_coefficients(&data)?;
                 let types = data.atom_types as usize;
@@ -172,14 +172,23 @@ impl InitSpec {
     /// The GSD frame and its index.
     fn gsd_frame(&self) -> Result<(Frame, u64), ParamError> {
         let bad = |message: String| ParamError::new("init", self.file.display(), message);
-        let reader = GsdReader::open(&self.file).map_err(|e| bad(e.to_string()))?;
+        let reader = GsdReader::open(&self.file).map_err(|e| bad(without_path(e)))?;
         let k = match self.frame {
             Some(k) => k,
             None if reader.frames() > 0 => reader.frames() - 1,
             None => return Err(bad("the file has no frame".into())),
         };
-        let f = reader.frame(k).map_err(|e| bad(e.to_string()))?;
+        let f = reader.frame(k).map_err(|e| bad(without_path(e)))?;
         Ok((f, k))
+    }
+}
+
+/// `e`'s message without the file's path, which the error naming `init` shows already.
+fn without_path(e: TrajectoryError) -> String {
+    match e {
+        TrajectoryError::Io { source, .. } => source.to_string(),
+        TrajectoryError::Format { message, .. } => message,
+        other => other.to_string(),
     }
 }
 
