@@ -9,14 +9,17 @@
 //! - `sheared`: Lees-Edwards boundaries at shear rate 0.2;
 //! - `walled`: walls across z at 1 and L - 1 moving at -1 and +1 along x (Couette flow), the
 //!   particles outside them frozen, and a body force of 0.1 along x;
-//! - `two-types`: every third particle of type 1, `a = [[25, 40], [40, 25]]`, masses 1 and 2.
+//! - `two-types`: every third particle of type 1, `a = [[25, 40], [40, 25]]`, masses 1 and 2;
+//! - `melt`: chains of 10 consecutive ids bonded by harmonic springs `K = 100`, `r0 = 0.7` (the
+//!   bonds of scenes/melt-stiff.toml), laid as random walks of step 0.7 from uniform starts.
 
-use dpd::init::{equilibrium_box, freeze_outside};
+use dpd::bonded::{Bond, BondStyle, Topology};
+use dpd::init::{equilibrium_box, freeze_outside, maxwell_momenta};
 use dpd::{Params, SystemBuilder, Vec3};
 use dpd_core::Walls;
 use std::hash::{DefaultHasher, Hash, Hasher};
 
-const USAGE: &str = "usage: N STEPS THREADS SKIN SCHEME [periodic|sheared|walled|two-types]";
+const USAGE: &str = "usage: N STEPS THREADS SKIN SCHEME [periodic|sheared|walled|two-types|melt]";
 
 fn arg<T: std::str::FromStr>(k: usize, what: &str) -> Result<T, String> {
     let s = std::env::args()
@@ -53,8 +56,37 @@ fn system(kind: &str, n: usize) -> Result<SystemBuilder, Box<dyn std::error::Err
                 .kinds(kinds)
                 .masses(masses)
         }
+        "melt" => melt(params.build()?, &built)?,
         other => return Err(format!("SYSTEM = {other:?} is not valid; {USAGE}").into()),
     })
+}
+
+/// The particles of `built` (box, momenta, the first bead of each chain) in chains of 10
+/// consecutive ids (a shorter last chain if 10 does not divide N): each bead 0.7 from the one
+/// before, along a direction drawn from a Gaussian (isotropic).
+fn melt(params: Params, built: &dpd::System) -> Result<SystemBuilder, Box<dyn std::error::Error>> {
+    const LENGTH: usize = 10;
+    let n = built.len();
+    let steps = maxwell_momenta(&vec![1.0; n], 1.0, 2);
+    let mut q = built.positions().to_vec();
+    let mut bonds = Vec::new();
+    for k in 1..n {
+        if k % LENGTH != 0 {
+            q[k] = built.boundary().wrap(q[k - 1] + 0.7 * steps[k].normalize());
+            bonds.push(Bond {
+                i: k as u32 - 1,
+                j: k as u32,
+                kind: 0,
+            });
+        }
+    }
+    let mut topology = Topology::builder(n);
+    topology.bond_types = vec![BondStyle::Harmonic { k: 100.0, r0: 0.7 }];
+    topology.bonds = bonds;
+    Ok(dpd::System::builder(params, *built.boundary(), q)
+        .momenta(built.momenta().to_vec())
+        .seed(1)
+        .topology(topology.build()?))
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {

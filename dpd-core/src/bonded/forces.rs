@@ -15,7 +15,7 @@ pub(crate) struct Frame<'a> {
 
 impl Frame<'_> {
     /// `q_i - q_j` under minimum image (storage indices).
-    #[inline]
+    #[inline(always)]
     fn delta(&self, i: u32, j: u32) -> Vec3 {
         let d = self.q[i as usize] - self.q[j as usize];
         match self.shear {
@@ -34,22 +34,22 @@ pub(crate) struct Overstretch {
     pub r: f64,
 }
 
-/// One bonded term as [`Located::each_force`] visits it.
-enum Term<'a> {
-    /// Bond number `n`, its vector `d = q_i - q_j` of squared length `r2`, the force on `i`.
-    Bond {
-        n: usize,
-        bond: &'a Bond,
-        d: Vec3,
-        r2: f64,
-        force: Vec3,
-    },
-    /// An angle, its arms `q_i - q_j`, `q_k - q_j` and the forces on `i` and `k`.
-    Angle {
-        angle: &'a Angle,
-        arms: [Vec3; 2],
-        forces: [Vec3; 2],
-    },
+/// One bond as [`Located::each_bond`] visits it: bond number `n` of the topology, its vector
+/// `d = q_i - q_j` of squared length `r2`, the force on `i`.
+struct BondTerm<'a> {
+    n: usize,
+    bond: &'a Bond,
+    d: Vec3,
+    r2: f64,
+    force: Vec3,
+}
+
+/// One angle as [`Located::each_angle`] visits it: its arms `q_i - q_j`, `q_k - q_j` and the
+/// forces on `i` and `k`.
+struct AngleTerm<'a> {
+    angle: &'a Angle,
+    arms: [Vec3; 2],
+    forces: [Vec3; 2],
 }
 
 /// One angle's geometry: the arms `a = q_i - q_j`, `b = q_k - q_j` from the vertex, `cos
@@ -109,29 +109,34 @@ impl Bend {
 }
 
 impl Located {
-    /// Visit every bond, then every angle, with its geometry and forces ([`Term`]).
-    #[inline]
-    fn each_force(&self, frame: Frame, mut visit: impl FnMut(Term)) {
+    /// Visit every bond with its geometry and force.
+    #[inline(always)]
+    fn each_bond(&self, frame: Frame, mut visit: impl FnMut(BondTerm)) {
         let styles = self.topology.bond_types();
-        for (n, b) in self.bonds.iter().enumerate() {
+        for (b, &n) in self.bonds.iter().zip(&self.bond_index) {
             let d = frame.delta(b.i, b.j);
             let r2 = d.norm_squared();
             let force = styles[b.kind as usize].force_over_r(r2) * d;
-            visit(Term::Bond {
-                n,
+            visit(BondTerm {
+                n: n as usize,
                 bond: b,
                 d,
                 r2,
                 force,
             });
         }
+    }
+
+    /// Visit every angle with its geometry and forces.
+    #[inline(always)]
+    fn each_angle(&self, frame: Frame, mut visit: impl FnMut(AngleTerm)) {
         let styles = self.topology.angle_types();
         for a in &self.angles {
             let arms = [frame.delta(a.i, a.j), frame.delta(a.k, a.j)];
             let bend = Bend::new(arms[0], arms[1]);
             let slope = styles[a.kind as usize].slope(bend.c);
             let forces = [-slope * bend.dc_di, -slope * bend.dc_dk];
-            visit(Term::Angle {
+            visit(AngleTerm {
                 angle: a,
                 arms,
                 forces,
@@ -139,35 +144,30 @@ impl Located {
         }
     }
 
-    /// The bonded forces at `frame` into `out` (one per particle, storage order); the first
-    /// overstretched bond, if any (its force is then meaningless).
+    /// The bonded forces at `frame` into `out` (one per particle, storage order); the
+    /// overstretched bond of lowest index, if any (its force is then meaningless).
     pub(crate) fn forces(&self, frame: Frame, out: &mut Vec<Vec3>) -> Option<Overstretch> {
         out.clear();
         out.resize(frame.q.len(), Vec3::zeros());
         let styles = self.topology.bond_types();
         let mut overstretch = None;
-        self.each_force(frame, |term| match term {
-            Term::Bond {
-                n, bond, r2, force, ..
-            } => {
-                if overstretch.is_none() && styles[bond.kind as usize].overstretched(r2) {
-                    overstretch = Some(Overstretch {
-                        bond: n,
-                        r: r2.sqrt(),
-                    });
-                }
-                out[bond.i as usize] += force;
-                out[bond.j as usize] -= force;
+        self.each_bond(frame, |t| {
+            if styles[t.bond.kind as usize].overstretched(t.r2)
+                && overstretch.is_none_or(|o: Overstretch| t.n < o.bond)
+            {
+                overstretch = Some(Overstretch {
+                    bond: t.n,
+                    r: t.r2.sqrt(),
+                });
             }
-            Term::Angle {
-                angle,
-                forces: [fi, fk],
-                ..
-            } => {
-                out[angle.i as usize] += fi;
-                out[angle.k as usize] += fk;
-                out[angle.j as usize] -= fi + fk;
-            }
+            out[t.bond.i as usize] += t.force;
+            out[t.bond.j as usize] -= t.force;
+        });
+        self.each_angle(frame, |t| {
+            let ([fi, fk], a) = (t.forces, t.angle);
+            out[a.i as usize] += fi;
+            out[a.k as usize] += fk;
+            out[a.j as usize] -= fi + fk;
         });
         overstretch
     }
@@ -177,28 +177,27 @@ impl Located {
     /// conservative part; its trace is [`BondedSums::virial`] (an angle's trace is 0).
     pub(crate) fn virial_tensor(&self, frame: Frame) -> Tensor {
         let mut w = Tensor::zeros();
-        self.each_force(frame, |term| match term {
-            Term::Bond { d, force, .. } => w += d * force.transpose(),
-            Term::Angle {
-                arms: [a, b],
-                forces: [fi, fk],
-                ..
-            } => w += a * fi.transpose() + b * fk.transpose(),
+        self.each_bond(frame, |t| w += t.d * t.force.transpose());
+        self.each_angle(frame, |t| {
+            let ([a, b], [fi, fk]) = (t.arms, t.forces);
+            w += a * fi.transpose() + b * fk.transpose();
         });
         w
     }
 
-    /// The first bond at or beyond its reach at `frame`, if any.
+    /// The bond of lowest index at or beyond its reach at `frame`, if any.
     pub(crate) fn overstretch(&self, frame: Frame) -> Option<Overstretch> {
         let styles = self.topology.bond_types();
-        self.bonds.iter().enumerate().find_map(|(n, b)| {
+        let bonds = self.bonds.iter().zip(&self.bond_index);
+        let over = bonds.filter_map(|(b, &n)| {
             let r2 = frame.delta(b.i, b.j).norm_squared();
             let over = styles[b.kind as usize].overstretched(r2);
             over.then(|| Overstretch {
-                bond: n,
+                bond: n as usize,
                 r: r2.sqrt(),
             })
-        })
+        });
+        over.min_by_key(|o| o.bond)
     }
 
     /// The bonded energy, Laplacian and virial at `frame` (NaN with an overstretched FENE

@@ -21,13 +21,22 @@ pub(crate) use forces::{BondedSums, Frame, Overstretch};
 pub use style::{AngleStyle, BondStyle};
 pub use topology::{Angle, Bond, Topology, TopologyBuilder};
 
-/// A topology with its bonds and angles in storage indices: the same lists as the topology's,
-/// in the same order, each id replaced by where that particle is stored now.
+/// A topology with its bonds and angles in storage indices, ordered so that the force loops
+/// walk the particles' storage forward: the bonds by the storage index of their first particle
+/// `i`, the angles by that of their vertex `j` (ties in the topology's order). Since the
+/// particles are stored in cell order, the other particles of a bond or an angle are stored
+/// near it too.
 #[derive(Clone, Debug)]
 pub(crate) struct Located {
     topology: Topology,
     bonds: Vec<Bond>,
+    /// The topology's index of each of `bonds` (to name a bond in messages).
+    bond_index: Vec<u32>,
     angles: Vec<Angle>,
+    /// Where each bond goes: by the storage index of its first particle.
+    bond_slots: Slots,
+    /// Where each angle goes: by the storage index of its vertex.
+    angle_slots: Slots,
     /// Scratch: the storage index of each id.
     at: Vec<u32>,
 }
@@ -35,9 +44,13 @@ pub(crate) struct Located {
 impl Located {
     /// `topology` for particles stored in the order of `ids` (a permutation of its ids).
     pub(crate) fn new(topology: Topology, ids: &[u32]) -> Located {
+        let n = topology.particles();
         let mut located = Located {
             bonds: topology.bonds().to_vec(),
+            bond_index: vec![0; topology.bonds().len()],
             angles: topology.angles().to_vec(),
+            bond_slots: Slots::new(n, topology.bonds().iter().map(|b| b.i)),
+            angle_slots: Slots::new(n, topology.angles().iter().map(|a| a.j)),
             topology,
             at: Vec::new(),
         };
@@ -45,18 +58,34 @@ impl Located {
         located
     }
 
-    /// Re-express the bonds and angles for particles now stored in the order of `ids`.
+    /// Re-express and re-order the bonds and angles for particles now stored in the order of
+    /// `ids` (counting sorts by storage index: linear in the particles and bonds).
     pub(crate) fn locate(&mut self, ids: &[u32]) {
         self.at.resize(ids.len(), 0);
         for (k, &id) in ids.iter().enumerate() {
             self.at[id as usize] = k as u32;
         }
         let at = &self.at;
-        for (dst, b) in self.bonds.iter_mut().zip(self.topology.bonds()) {
-            (dst.i, dst.j) = (at[b.i as usize], at[b.j as usize]);
+        self.bond_slots.start(ids);
+        for (n, b) in self.topology.bonds().iter().enumerate() {
+            let i = at[b.i as usize];
+            let slot = self.bond_slots.take(i);
+            self.bonds[slot] = Bond {
+                i,
+                j: at[b.j as usize],
+                kind: b.kind,
+            };
+            self.bond_index[slot] = n as u32;
         }
-        for (dst, a) in self.angles.iter_mut().zip(self.topology.angles()) {
-            (dst.i, dst.j, dst.k) = (at[a.i as usize], at[a.j as usize], at[a.k as usize]);
+        self.angle_slots.start(ids);
+        for a in self.topology.angles() {
+            let j = at[a.j as usize];
+            self.angles[self.angle_slots.take(j)] = Angle {
+                i: at[a.i as usize],
+                j,
+                k: at[a.k as usize],
+                kind: a.kind,
+            };
         }
     }
 
@@ -72,6 +101,51 @@ impl Located {
     #[cfg(test)]
     pub(crate) fn angles(&self) -> &[Angle] {
         &self.angles
+    }
+}
+
+/// A counting sort by storage index of a list whose items each name one particle by id.
+#[derive(Clone, Debug)]
+struct Slots {
+    /// How many items name each id (empty for an empty list).
+    per_id: Vec<u32>,
+    /// The next free slot of each storage index.
+    next: Vec<u32>,
+}
+
+impl Slots {
+    /// For the items naming `ids` (each below `particles`).
+    fn new(particles: usize, ids: impl ExactSizeIterator<Item = u32>) -> Slots {
+        let mut per_id = vec![0; if ids.len() == 0 { 0 } else { particles }];
+        for id in ids {
+            per_id[id as usize] += 1;
+        }
+        Slots {
+            per_id,
+            next: Vec::new(),
+        }
+    }
+
+    /// Start a sort for particles stored in the order of `ids`: the items of the particle at
+    /// storage index `k` go after those of the particles before it.
+    fn start(&mut self, ids: &[u32]) {
+        if self.per_id.is_empty() {
+            return;
+        }
+        self.next.resize(ids.len(), 0);
+        let mut slot = 0;
+        for (next, &id) in self.next.iter_mut().zip(ids) {
+            *next = slot;
+            slot += self.per_id[id as usize];
+        }
+    }
+
+    /// The slot of the next item of the particle at storage index `k`.
+    #[inline]
+    fn take(&mut self, k: u32) -> usize {
+        let next = &mut self.next[k as usize];
+        *next += 1;
+        *next as usize - 1
     }
 }
 
@@ -115,7 +189,8 @@ mod tests {
     }
 
     /// After the particles are re-sorted into cell order, each located bond and angle joins the
-    /// particles whose ids the topology names.
+    /// particles whose ids the topology names, every bond and angle once, the bonds in the
+    /// storage order of their first particle and the angles in that of their vertex.
     #[test]
     fn located_bonds_follow_the_particles_through_re_sorting() {
         let topology = chains(400);
@@ -133,16 +208,27 @@ mod tests {
         );
         let located = sys.located().unwrap();
         assert_eq!(located.topology(), &topology);
-        for (l, b) in located.bonds().iter().zip(topology.bonds()) {
+        let mut seen = vec![false; topology.bonds().len()];
+        for (l, &n) in located.bonds().iter().zip(&located.bond_index) {
+            let b = topology.bonds()[n as usize];
             assert_eq!(
                 (ids[l.i as usize], ids[l.j as usize], l.kind),
                 (b.i, b.j, b.kind)
             );
+            assert!(
+                !std::mem::replace(&mut seen[n as usize], true),
+                "bond {n} twice"
+            );
         }
-        for (l, a) in located.angles().iter().zip(topology.angles()) {
-            let found = (ids[l.i as usize], ids[l.j as usize], ids[l.k as usize]);
-            assert_eq!(found, (a.i, a.j, a.k));
-        }
+        assert!(seen.iter().all(|&s| s), "every bond located");
+        assert!(located.bonds().is_sorted_by_key(|b| b.i));
+        let by_ids = |a: &Angle| (ids[a.i as usize], ids[a.j as usize], ids[a.k as usize]);
+        let mut found: Vec<_> = located.angles().iter().map(by_ids).collect();
+        let mut named: Vec<_> = topology.angles().iter().map(|a| (a.i, a.j, a.k)).collect();
+        found.sort_unstable();
+        named.sort_unstable();
+        assert_eq!(found, named);
+        assert!(located.angles().is_sorted_by_key(|a| a.j));
     }
 
     #[test]
