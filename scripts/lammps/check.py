@@ -726,8 +726,8 @@ def melt_start(args, native, dt, steps=4000, seed=11):
     """The melt's start, shared by every engine: melt_data's random walks, whose <R_g^2> LAMMPS
     must read back at step 0 to 1e-9 (it unwraps the wrapped beads by the image flags
     read_data gave them), run by LAMMPS (`native`) for `steps` steps (40 time units: R_g^2
-    relaxes from the walks' 0.82 to ~1.05, its integrated correlation time 6.5 time units,
-    measured on a run of 300) and written by write_data twice: melt-eq.data without
+    relaxes from the walks' 0.82 to ~1.05; at equilibrium its integrated correlation time is
+    1.9 time units, melt_spread) and written by write_data twice: melt-eq.data without
     coefficients, for the LAMMPS inputs that define their own styles, and the file returned,
     with pair ij coefficients (`PairIJ Coeffs # dpd`, `Bond Coeffs # harmonic`), for `dpd run
     --init`; `seed`, melt_data's. None if LAMMPS failed."""
@@ -747,8 +747,8 @@ def chain_mean(path):
     """The mean over chains of the last block of a `fix ave/time ... mode vector` file (one
     row per chain) and its standard error from the spread of the chains: the chains of a melt
     are independent to a good approximation, so unlike block averages of the chains' mean this
-    needs no bound on R_g^2's correlation time (6.5 time units; 3-unit blocks underestimated
-    its error by 2x)."""
+    needs no bound on R_g^2's correlation time (1.9 time units, above half the 3-unit blocks
+    that serve the bond length and pressure)."""
     with open(path) as f:
         lines = [line.split() for line in f if not line.startswith("#")]
     # The block's rows are numbered 1 to the chain count: the last line's number is the count.
@@ -775,13 +775,38 @@ def melt_measure(args, name, integrator, dt, equil, steps, seed=2024):
     return stats
 
 
+def correlation_time(values, step):
+    """The integrated autocorrelation time of `values` sampled every `step` time units, summed
+    up to the first lag of at least 6 times the sum so far (Sokal's window)."""
+    n = len(values)
+    m = sum(values) / n
+    var = sum((x - m) ** 2 for x in values) / n
+    tau = 0.5
+    for lag in range(1, n // 2):
+        tau += sum((values[i] - m) * (values[i + lag] - m) for i in range(n - lag)) / (n - lag) / var
+        if lag >= 6 * tau:
+            break
+    return tau * step
+
+
 def melt_spread(args, runs=8):
-    """By hand (docs/lammps-checks.md): whether chain_mean's error is that of a run's <R_g^2>,
-    from `runs` LAMMPS runs (pair dpd + fix nve) as melt's, each from its own random walks and
-    seeds: the spread of their means against the mean of their chain errors. Then the size of
-    a wrong engine's error: the melt with the pair forces within a chain left out (neigh_modify
-    exclude molecule/intra all)."""
+    """By hand (docs/lammps-checks.md): the correlation time of the melt's <R_g^2> (pair dpd +
+    fix nve, 300 time units from melt_start's state); whether chain_mean's error is that of a
+    run's <R_g^2>, from `runs` LAMMPS runs as melt's, each from its own random walks and seeds:
+    the spread of their means against the mean of their chain errors. Then the size of a wrong
+    engine's error: the melt with the pair forces within a chain left out (neigh_modify exclude
+    molecule/intra all)."""
     dt, equil, steps = 0.01, 500, 6000
+    native = f"pair_style dpd 1.0 1.0 4321\npair_coeff 1 1 25.0 {GAMMA} 1.0\n{MELT_BOND}\nfix 1 all nve"
+    if melt_start(args, native, dt) is None:
+        return
+    code, out = run_lammps(args, melt_input(args, native, 30000, dt, 10), 1, "melt-long")
+    rows = [r for r in thermo_rows(out) if r[0] > 1000] if code == 0 else []
+    if not rows:
+        check(False, f"melt, the long run ran: {out[-2000:]}")
+        return
+    print(f"     <R_g^2> over 290 time units: integrated correlation time "
+          f"{correlation_time([r[4] for r in rows], 10 * dt):.1f} time units", flush=True)
     means, errors = [], []
     for k in range(1, runs + 1):
         native = f"pair_style dpd 1.0 1.0 {4321 + k}\npair_coeff 1 1 25.0 {GAMMA} 1.0\n{MELT_BOND}\nfix 1 all nve"
