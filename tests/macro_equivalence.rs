@@ -68,6 +68,32 @@ fn velocity_verlet_matches_the_reference_bitwise() {
     );
 }
 
+/// The standard box with Lowe-Andersen collisions at rate 2 (for schemes with L).
+fn colliding_box() -> System {
+    let params = dpd::Params::builder().collision_rate(2.0);
+    common::system(500, 3.0, params, DT, SEED)
+}
+
+#[test]
+fn lowe_andersen_schemes_match_dyn_scheme_bitwise() {
+    for (generated, source) in [
+        (
+            &dpd_scheme!("A(1/2) B(1/2) L B(1/2) A(1/2)") as &dyn Scheme,
+            "A(1/2) B(1/2) L B(1/2) A(1/2)",
+        ),
+        (&dpd_scheme!("B(1/2) A B(1/2) L"), "B(1/2) A B(1/2) L"),
+        (&dpd_scheme!("BA L< L> AB"), "BA L< L> AB"),
+    ] {
+        let (mut sa, mut sb) = (colliding_box(), colliding_box());
+        let dynamic = dynamic(source);
+        for step in 0..200 {
+            sa.advance(generated, 1).unwrap();
+            sb.advance(&dynamic, 1).unwrap();
+            assert!(common::same_bits(&sa, &sb), "{source}: step {}", step + 1);
+        }
+    }
+}
+
 #[test]
 fn obab_with_exact_o_matches_dyn_scheme_bitwise() {
     assert_same_trajectory(&dpd_scheme!("OBAB"), &dynamic("OBAB"), 1000);

@@ -4,21 +4,23 @@
 //! step counter, positions, momenta, masses, types and ids in storage order, neighbour skin, the Lees-Edwards state
 //! (shear rate, offset, travel), the walls with their frozen particles, the body force, the positions and the Lees-Edwards state of the last
 //! neighbour-list build (which fix the sweep order and the next rebuild), the name of the
-//! scheme, the topology (bonds and angles by id, from version 8), and what a scheme carries between steps (the full forces of velocity Verlet, with
+//! scheme, the topology (bonds and angles by id, from version 8), the Lowe-Andersen collision
+//! rate (from version 9), and what a scheme carries between steps (the full forces of velocity Verlet, with
 //! their noise). Pair geometry and conservative forces are not stored: they are pure functions
 //! of the positions and the list, recomputed in the same pair order, hence bitwise equal. A restarted run
 //! therefore continues bit for bit like an uninterrupted one.
 //!
 //! File layout: 8 magic bytes `DPDCHKPT`, format version (u32 LE), payload length (u64 LE),
 //! CRC-32 of the payload (u32 LE), payload (bincode: the fields of `Payload`, then, from
-//! version 8, the optional topology; version 7 files, without it, still load). Writes go to a temporary file in the same
+//! version 8, the optional topology, and from version 9 the optional collision rate; version 7
+//! and 8 files, without them, still load). Writes go to a temporary file in the same
 //! directory, are synced, then renamed over the target, so an interrupted write never destroys
 //! the previous checkpoint.
 
 use crate::bonded::Topology;
 use crate::boundary::{LeesEdwards, PeriodicBox};
 use crate::error::CheckpointError;
-use crate::params::Params;
+use crate::params::{Params, ParamsBuilder};
 use crate::system::{Continuation, System};
 use crate::walls::Walls;
 use crate::Vec3;
@@ -27,8 +29,9 @@ use std::io::Write;
 use std::path::Path;
 
 const MAGIC: &[u8; 8] = b"DPDCHKPT";
-const VERSION: u32 = 8;
-/// The oldest version read: version 7 is version 8 without the topology.
+const VERSION: u32 = 9;
+/// The oldest version read: version 7 is version 9 without the topology and the collision
+/// rate, version 8 without the collision rate.
 const OLDEST: u32 = 7;
 const HEADER: usize = 8 + 4 + 8 + 4;
 
@@ -113,6 +116,7 @@ impl System {
         };
         let mut data = bincode::serialize(&payload).map_err(encode)?;
         bincode::serialize_into(&mut data, &self.topology()).map_err(encode)?;
+        bincode::serialize_into(&mut data, &self.params().collision_rate()).map_err(encode)?;
         let mut bytes = Vec::with_capacity(HEADER + data.len());
         bytes.extend_from_slice(MAGIC);
         bytes.extend_from_slice(&VERSION.to_le_bytes());
@@ -184,13 +188,23 @@ impl System {
         } else {
             None
         };
+        let collision_rate: Option<f64> = if version >= 9 {
+            bincode::deserialize_from(&mut rest).map_err(decode)?
+        } else {
+            None
+        };
         let invalid = |source| CheckpointError::Invalid {
             path: name.clone(),
             source,
         };
+        let params = ParamsBuilder {
+            collision_rate,
+            ..payload.params.into()
+        };
+        let params = params.build().map_err(invalid)?;
         let shear = restore_shear(payload.shear, &payload.bx).map_err(invalid)?;
         let list_shear = restore_shear(payload.list_shear, &payload.bx).map_err(invalid)?;
-        let mut builder = System::builder(payload.params, payload.bx, payload.q)
+        let mut builder = System::builder(params, payload.bx, payload.q)
             .momenta(payload.p)
             .masses(payload.mass)
             .kinds(payload.kind)
@@ -261,27 +275,45 @@ mod tests {
         assert_eq!(back.ids(), sys.ids());
     }
 
-    /// A version 7 file (version 8 without the topology that follows the payload) loads.
+    /// Version 7 and 8 files (version 9 without the topology and the collision rate that
+    /// follow the payload, or without the rate) load.
     #[test]
-    fn version_7_checkpoints_load() {
+    fn version_7_and_8_checkpoints_load() {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("c.chk");
         let sys = system(None);
         sys.save_checkpoint(&path, "ABOBA").unwrap();
         let bytes = std::fs::read(&path).unwrap();
-        let data = &bytes[HEADER..bytes.len() - 1];
-        assert_eq!(bytes[bytes.len() - 1], 0, "no topology: bincode's None");
-        let mut old = MAGIC.to_vec();
-        old.extend_from_slice(&7u32.to_le_bytes());
-        old.extend_from_slice(&(data.len() as u64).to_le_bytes());
-        old.extend_from_slice(&crc32fast::hash(data).to_le_bytes());
-        old.extend_from_slice(data);
-        std::fs::write(&path, old).unwrap();
-        let (back, scheme) = System::load_checkpoint(&path).unwrap();
-        assert_eq!(
-            (back.positions(), scheme.as_str()),
-            (sys.positions(), "ABOBA")
-        );
-        assert!(back.topology().is_none());
+        assert_eq!(bytes[bytes.len() - 2..], [0, 0], "bincode's None twice");
+        for (version, dropped) in [(7u32, 2), (8, 1)] {
+            let data = &bytes[HEADER..bytes.len() - dropped];
+            let mut old = MAGIC.to_vec();
+            old.extend_from_slice(&version.to_le_bytes());
+            old.extend_from_slice(&(data.len() as u64).to_le_bytes());
+            old.extend_from_slice(&crc32fast::hash(data).to_le_bytes());
+            old.extend_from_slice(data);
+            std::fs::write(&path, old).unwrap();
+            let (back, scheme) = System::load_checkpoint(&path).unwrap();
+            assert_eq!(
+                (back.positions(), scheme.as_str()),
+                (sys.positions(), "ABOBA")
+            );
+            assert!(back.topology().is_none() && back.params().collision_rate().is_none());
+        }
+    }
+
+    /// The collision rate of Lowe-Andersen schemes is kept.
+    #[test]
+    fn the_collision_rate_is_kept() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("c.chk");
+        let params = Params::builder().collision_rate(2.5).build().unwrap();
+        let sys = equilibrium_box(params, 200, 3.0, 3)
+            .unwrap()
+            .build()
+            .unwrap();
+        sys.save_checkpoint(&path, "B A B L").unwrap();
+        let (back, _) = System::load_checkpoint(&path).unwrap();
+        assert_eq!(back.params(), sys.params());
     }
 }

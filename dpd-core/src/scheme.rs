@@ -2,7 +2,9 @@
 //! (the guarded step that detects blow-ups is in `system/guard.rs`).
 
 use crate::error::{AdvanceError, ParamError};
-use crate::flow::{bbk, drift, full_force, full_force_group, kick, kick_group, ou, trotter};
+use crate::flow::{
+    bbk, collide, drift, full_force, full_force_group, kick, kick_group, ou, trotter,
+};
 use crate::system::System;
 use dpd_ir::{Diagnostic, Flow, ForceGroup, Options, Program, Stage};
 
@@ -72,7 +74,8 @@ impl System {
     /// Whether `scheme` can run on this system: each force group its program names
     /// (`B[bond]`) must be one the system has ([`System::force_groups`]), and each group the
     /// system has must be applied by some stage (a scheme of `B[pair]` and `T` alone leaves the
-    /// bonded forces out). Hand-written schemes, without a program, are not checked.
+    /// bonded forces out); a program with L needs a collision rate ([`crate::Params::collision_rate`]).
+    /// Hand-written schemes, without a program, are not checked.
     pub fn check_scheme<S: Scheme + ?Sized>(&self, scheme: &S) -> Result<(), ParamError> {
         let Some(program) = scheme.program() else {
             return Ok(());
@@ -91,6 +94,18 @@ impl System {
             return refuse(format!(
                 "it never applies the {} of this system; add a B[{name}] stage, or use B or F for all forces",
                 group_forces(g)
+            ));
+        }
+        if program.stages.iter().any(|s| s.flow == Flow::L)
+            && self.params().collision_rate().is_none()
+        {
+            return Err(ParamError::new(
+                "collision_rate",
+                "unset",
+                format!(
+                    "scheme {} has L (Lowe-Andersen collisions), which needs the collision frequency Gamma: set collision_rate to a finite value > 0 (per unit time)",
+                    scheme.name()
+                ),
             ));
         }
         Ok(())
@@ -119,6 +134,7 @@ pub fn apply_stage(sys: &mut System, stage: &Stage) {
         (Flow::T, _) => trotter(sys, h, stage.stream, stage.order),
         (Flow::F, None) => full_force(sys, h, stage.stream),
         (Flow::F, Some(group)) => full_force_group(sys, h, stage.stream, group),
+        (Flow::L, _) => collide(sys, h, stage.stream, stage.order),
     }
 }
 

@@ -51,6 +51,10 @@ fn trajectory_is_identical_for_any_thread_count() {
     ] {
         same_on_any_thread_count(scheme, &[1, 2, 3, 5], big_box, 40);
     }
+    // Lowe-Andersen collisions (L) draw their own numbers from each pair's key.
+    let colliding = || common::system(3000, 3.0, Params::builder().collision_rate(5.0), 0.04, 17);
+    let lowe = compiled("A(1/2) B(1/2) L B(1/2) A(1/2)");
+    same_on_any_thread_count(&lowe, &[1, 2, 3, 5], colliding, 40);
 }
 
 /// Above 16 384 particles the per-particle loops (binning, permutation, drifts, kicks, the

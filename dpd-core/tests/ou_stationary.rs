@@ -3,26 +3,12 @@
 mod common;
 
 use dpd_core::flow::ou;
-use dpd_core::{Params, PeriodicBox, Scheme, SweepOrder, System, Vec3};
+use dpd_core::{Params, Scheme, SweepOrder, System};
 
 /// `pairs` isolated pairs at separation `r = 0.5` (lattice spacing 3 r_c, so pairs do not
 /// interact with each other), masses 1 and 3 (m_ij = 3/4), zero initial velocities.
 fn isolated_pairs(pairs: usize, gamma: f64, dt: f64, seed: u64) -> System {
-    let side = (pairs as f64).cbrt().ceil() as usize;
-    let l = 3.0 * side as f64;
-    let bx = PeriodicBox::cubic(l).unwrap();
-    let mut q = Vec::new();
-    for k in 0..pairs {
-        let c = Vec3::new(
-            (k % side) as f64,
-            ((k / side) % side) as f64,
-            (k / side / side) as f64,
-        ) * 3.0;
-        // Vary the pair direction so all three axes are exercised.
-        let dir = [Vec3::x(), Vec3::y(), Vec3::z()][k % 3];
-        q.push(c);
-        q.push(c + 0.5 * dir);
-    }
+    let (bx, q) = common::isolated_pairs(pairs);
     let masses = (0..2 * pairs)
         .map(|i| if i % 2 == 0 { 1.0 } else { 3.0 })
         .collect();

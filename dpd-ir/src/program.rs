@@ -28,20 +28,32 @@ pub enum Flow {
     /// Explicit full-force kick `p += h (F^C + F^D + F^R)`; not a splitting of exact flows.
     /// An evaluation is reused while positions do not change (velocity Verlet convention).
     F,
+    /// Lowe-Andersen pairwise collisions: each pair within the cut-off, with probability
+    /// `1 - exp(-Gamma h)`, draws its relative normal velocity afresh from the Maxwellian of
+    /// its reduced mass. Exact in distribution for collisions at rate Gamma; needs `h > 0`.
+    L,
 }
 
 impl Flow {
     /// Every flow, in the order of the enum.
-    pub const ALL: [Flow; 6] = [Flow::A, Flow::B, Flow::O, Flow::Bbk, Flow::T, Flow::F];
+    pub const ALL: [Flow; 7] = [
+        Flow::A,
+        Flow::B,
+        Flow::O,
+        Flow::Bbk,
+        Flow::T,
+        Flow::F,
+        Flow::L,
+    ];
 
     /// True for the flows that loop over pairs drawing random numbers.
     pub fn is_stochastic(self) -> bool {
-        matches!(self, Flow::O | Flow::Bbk | Flow::T | Flow::F)
+        matches!(self, Flow::O | Flow::Bbk | Flow::T | Flow::F | Flow::L)
     }
 
     /// True for the flows that visit pairs successively, so that their order matters.
     pub fn is_successive_sweep(self) -> bool {
-        matches!(self, Flow::O | Flow::Bbk | Flow::T)
+        matches!(self, Flow::O | Flow::Bbk | Flow::T | Flow::L)
     }
 
     /// True for the flows that change positions.

@@ -304,7 +304,7 @@ fn errors_point_at_their_source() {
     assert!(err(" \n ")[0].message.contains("empty scheme"));
     assert_eq!(
         err("ABQ")[0].message,
-        "unknown sub-flow 'Q' at position 3; expected one of A, B, O, Ob, T, F, S or a defined name"
+        "unknown sub-flow 'Q' at position 3; expected one of A, B, O, Ob, T, F, L, S or a defined name"
     );
     assert_eq!(one_err("ABQ", "unknown sub-flow"), "Q");
     assert_eq!(one_err("AB x", "unknown sub-flow 'x'"), "x");
@@ -336,6 +336,16 @@ fn errors_point_at_their_source() {
     assert!(e[0].message.contains("cannot run backwards"));
     let e = compile_with("A B O(0) Ob(1) T(0)", &options).unwrap_err();
     assert_eq!(e.len(), 2, "{e:?}");
+    let e = compile_with("A B L(-1)", &options).unwrap_err();
+    assert!(e[0].message.contains("L is a stochastic sweep"), "{e:?}");
+    // Lowe-Andersen collisions thermostat alone; the error points at the first L.
+    assert_eq!(
+        one_err("O(1/2) B A B L(1/2)", "cannot be combined"),
+        "L(1/2)"
+    );
+    let lowe = ok("B A B L");
+    assert_eq!(lowe.stages[3].flow, Flow::L);
+    assert_eq!(lowe.to_string(), "B(1/2) A(1) B(1/2) L(1)");
     let e = compile_with("A B(1e400) O", &options).unwrap_err();
     assert!(e[0].message.contains("non-finite"), "{e:?}");
     assert_eq!(one_err("A B(2) O", "B coefficients"), "B(2)");

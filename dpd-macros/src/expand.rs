@@ -131,6 +131,7 @@ fn stage(stage: &Stage, rt: &TokenStream) -> TokenStream {
         (Flow::T, _) => quote!(#rt::trotter(sys, #h, #stream, #order);),
         (Flow::F, None) => quote!(#rt::full_force(sys, #h, #stream);),
         (Flow::F, Some(g)) => quote!(#rt::full_force_group(sys, #h, #stream, #g);),
+        (Flow::L, _) => quote!(#rt::collide(sys, #h, #stream, #order);),
     }
 }
 

@@ -54,6 +54,14 @@ pub enum StepMapError {
     Mode { omega2: f64, gamma: f64 },
     #[error("invalid kbt = {0}: must be finite and positive")]
     Kbt(f64),
+    /// An L stage: a pair collides or not, so the step is a mixture of two linear maps, whose
+    /// covariance `(1 - p) S C S^T + p (...)` no single `M C M^T + G G^T` reproduces.
+    #[error(
+        "{0} has L (Lowe-Andersen collisions), which the predictor does not cover: a collision \
+         happens or not, so the step is a random choice of linear maps, not one linear map \
+         with Gaussian noise"
+    )]
+    Collisions(String),
 }
 
 impl StepMap {
@@ -82,6 +90,7 @@ impl StepMap {
         if !(kbt.is_finite() && kbt > 0.0) {
             return Err(StepMapError::Kbt(kbt));
         }
+
         let streams = program
             .stages
             .iter()
@@ -162,6 +171,7 @@ impl StepMap {
                         Some(d),
                     )
                 }
+                Flow::L => return Err(StepMapError::Collisions(program.source.clone())),
                 Flow::F => {
                     if !valid {
                         cache_at = ForcePoint {

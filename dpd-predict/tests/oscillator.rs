@@ -34,6 +34,20 @@ fn baoab_and_aboba_sample_positions_exactly() {
     }
 }
 
+/// Lowe-Andersen collisions have no linear step map: the predictor refuses them by name.
+#[test]
+fn collisions_are_refused_by_name() {
+    let mode = Mode {
+        omega2: 100.0,
+        gamma: 4.5,
+    };
+    let e = StepMap::new(&program("B A B L"), mode, 0.05, 1.0).unwrap_err();
+    assert!(
+        e.to_string().contains("L (Lowe-Andersen collisions)"),
+        "{e}"
+    );
+}
+
 /// OBABO (velocity Verlet between two half OU steps) samples p exactly and x with variance
 /// 1 / (omega^2 (1 - (omega h / 2)^2)).
 #[test]

@@ -51,6 +51,10 @@ pub struct SceneFlags {
     #[arg(long, allow_negative_numbers = true)]
     #[serde(skip_serializing_if = "Option::is_none")]
     pub weight_exponent: Option<f64>,
+    /// Lowe-Andersen collision frequency Gamma (schemes with L)
+    #[arg(long, value_name = "GAMMA", allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub collision_rate: Option<f64>,
     /// Seed of the first run
     #[arg(long, allow_negative_numbers = true)]
     #[serde(skip_serializing_if = "Option::is_none")]

@@ -82,9 +82,10 @@ pub struct Exported {
 }
 
 /// The program of a registry name or scheme string (its kicks joined by [`joined_kicks`]), or
-/// why it cannot be exported: unknown (the registry's message), hand-written, or inconsistent
-/// without `allow_inconsistent`. Every letter and force group runs in the plugin (T only with
-/// `pair_style dpd/soft`, `B[bond]` only with bonded styles, which the fix checks).
+/// why it cannot be exported: unknown (the registry's message), hand-written, with an L stage,
+/// or inconsistent without `allow_inconsistent`. Every other letter and force group runs in the
+/// plugin (T only with `pair_style dpd/soft`, `B[bond]` only with bonded styles, which the fix
+/// checks).
 pub fn resolve(name: &str, allow_inconsistent: bool) -> Result<Exported, String> {
     let (label, program) = match lookup(name) {
         Ok(entry) => match entry.scheme().program() {
@@ -115,6 +116,13 @@ pub fn resolve(name: &str, allow_inconsistent: bool) -> Result<Exported, String>
             }
         }
     };
+    if program.stages.iter().any(|s| s.flow == Flow::L) {
+        return Err(format!(
+            "scheme '{name}' = {program} has L (Lowe-Andersen collisions), which the LAMMPS \
+             plugin does not run: its kernels have no collision sweep (export a scheme of A, B, \
+             O, Ob, T and F)"
+        ));
+    }
     let program = joined_kicks(program);
     let consistent = program.analysis().consistent;
     if !consistent && !allow_inconsistent {
@@ -203,7 +211,7 @@ fn c_string(text: &str) -> String {
     out
 }
 
-/// The C++ enumerator of a flow (schemes.h).
+/// The C++ enumerator of a flow (schemes.h, which has none for L: [`resolve`] refuses it).
 fn flow_name(flow: Flow) -> &'static str {
     match flow {
         Flow::A => "FLOW_A",
@@ -212,6 +220,7 @@ fn flow_name(flow: Flow) -> &'static str {
         Flow::Bbk => "FLOW_OB",
         Flow::T => "FLOW_T",
         Flow::F => "FLOW_F",
+        Flow::L => "FLOW_L",
     }
 }
 
@@ -320,6 +329,8 @@ mod tests {
 
     #[test]
     fn refusals_say_why() {
+        let lowe = resolve("B A B L", false).unwrap_err();
+        assert!(lowe.contains("L (Lowe-Andersen collisions)"), "{lowe}");
         let unknown = resolve("abobq", false).unwrap_err();
         assert!(unknown.contains("unknown scheme 'abobq'"), "{unknown}");
         let hand = resolve("setd", false).unwrap_err();

@@ -7,10 +7,12 @@ use crate::force::{ByType, Friction, Uniform};
 use crate::lanes::Lanes;
 #[cfg(target_arch = "x86_64")]
 use crate::lanes::{F64x4, F64x4x2, Vector};
-use crate::pairs::{Ends, Particles, Span, Two, Virial};
+use crate::pairs::{Ends, Noise, Particles, Span, Two, Virial};
+use crate::rng::PairRng;
 use crate::system::{PairState, System};
 use crate::{Tensor, Vec3};
 use dpd_ir::SweepOrder;
+use rand_core::RngCore;
 
 /// The change of one pair's relative normal velocity `u = e . v_ij`, `du = slope u + offset`,
 /// with `slope` and `offset` divided by `mu` ([`per_mass`]), so that `slope u + offset` is the
@@ -37,19 +39,43 @@ pub struct Change {
 /// and recording switches are resolved here, once per sweep, not per pair.
 #[inline(always)]
 fn sweep(sys: &mut System, stream: u8, order: SweepOrder, changes: impl Changes) {
+    let changes =
+        move |_: Noise, span: Span, z: &[f64], out: &mut Vec<Change>| changes(span, z, out);
+    sweep_drawing(sys, stream, order, Draws::Normals, changes);
+}
+
+/// Where the random numbers of a sweep's pairs come from.
+#[derive(Clone, Copy, PartialEq)]
+enum Draws {
+    /// The engine draws one standard normal per pair (when the friction is not zero).
+    Normals,
+    /// The flow draws its own from each pair's [`PairRng`], keyed by the [`Noise`].
+    Keyed,
+}
+
+/// [`sweep`] with `changes` also given the sweep's [`Noise`] (its key and the particle ids),
+/// and with the engine's normals only if `draws` asks for them (else `z` is all zeros).
+#[inline(always)]
+fn sweep_drawing(
+    sys: &mut System,
+    stream: u8,
+    order: SweepOrder,
+    draws: Draws,
+    changes: impl KeyedChanges,
+) {
     let (shifted, recording) = (sys.shifted_pairs(), sys.recording_impulses());
     let state = sys.pair_state(stream);
     let recorded = match (shifted, recording) {
         (false, false) => {
-            sweep_with::<false, ()>(state, order, changes);
+            sweep_with::<false, ()>(state, order, draws, changes);
             None
         }
         (true, false) => {
-            sweep_with::<true, ()>(state, order, changes);
+            sweep_with::<true, ()>(state, order, draws, changes);
             None
         }
-        (false, true) => Some(sweep_with::<false, Tensor>(state, order, changes)),
-        (true, true) => Some(sweep_with::<true, Tensor>(state, order, changes)),
+        (false, true) => Some(sweep_with::<false, Tensor>(state, order, draws, changes)),
+        (true, true) => Some(sweep_with::<true, Tensor>(state, order, draws, changes)),
     };
     if let Some(virial) = recorded {
         sys.record_impulses(virial);
@@ -60,11 +86,16 @@ fn sweep(sys: &mut System, stream: u8, order: SweepOrder, changes: impl Changes)
 trait Changes: Fn(Span, &[f64], &mut Vec<Change>) + Sync + Copy {}
 impl<F: Fn(Span, &[f64], &mut Vec<Change>) + Sync + Copy> Changes for F {}
 
+/// [`Changes`] that read the sweep's [`Noise`] ([`sweep_drawing`]).
+trait KeyedChanges: Fn(Noise, Span, &[f64], &mut Vec<Change>) + Sync + Copy {}
+impl<F: Fn(Noise, Span, &[f64], &mut Vec<Change>) + Sync + Copy> KeyedChanges for F {}
+
 #[inline(always)]
 fn sweep_with<const SHIFTED: bool, V: Virial>(
     state: PairState,
     order: SweepOrder,
-    changes: impl Changes,
+    draws: Draws,
+    changes: impl KeyedChanges,
 ) -> V {
     let PairState {
         pairs,
@@ -75,14 +106,16 @@ fn sweep_with<const SHIFTED: bool, V: Virial>(
         noise,
         ..
     } = state;
-    let noise = (params.sigma() > 0.0).then_some(noise);
+    let key = noise;
+    let noise = (draws == Draws::Normals && params.sigma() > 0.0).then_some(noise);
     let particles = Particles::new(inv_mass, kind, params.coefficients());
     pairs.sweep_prepared(
         order,
         noise,
         particles,
         p,
-        changes,
+        #[inline(always)]
+        move |span: Span, z: &[f64], out: &mut Vec<Change>| changes(key, span, z, out),
         // Inlined into both loops that visit (pairs of alternating runs, and the rest).
         #[inline(always)]
         move |ends: Ends, two: Two<Vec3>, change: Change, dvx| {
@@ -332,6 +365,49 @@ pub fn trotter_update(gamma: f64, kbt: f64, h: f64, f: f64, wr: f64, mu: f64, r:
         slope,
         offset,
         conservative: f * h,
+    }
+}
+
+/// L: Lowe-Andersen collisions at rate Gamma (`collision_rate`) over `h`. Each pair within
+/// the cut-off, visited successively in `order` (as O), collides with probability
+/// `p = 1 - exp(-Gamma h)`: its relative normal velocity `u = e . v_ij` is replaced by
+/// `sqrt(kbt mu) R`, a draw from the Maxwellian of its reduced mass (`mu = 1/m_i + 1/m_j`),
+/// by equal and opposite impulses, so momentum is conserved. Pair `(i, j)`'s [`PairRng`] in
+/// `stream` gives a uniform `U` (53 bits of its first 64) and, when `U < p`, the normal `R`
+/// (its next draws). Without a collision rate (which [`System::check_scheme`] refuses for a
+/// scheme with L) no pair collides.
+#[inline]
+pub fn collide(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
+    let Some(rate) = sys.params().collision_rate() else {
+        return;
+    };
+    let (p, kbt) = (-expm1(-rate * h), sys.params().kbt());
+    let mark = sys.heat_mark();
+    let change = move |key: Noise, span: Span, _: &[f64], out: &mut Vec<Change>| {
+        out.extend(span.iter().map(|ends| {
+            let pair = ends.pair();
+            let (i, j) = (key.id[pair.i as usize], key.id[pair.j as usize]);
+            let mut rng = PairRng::new(key.seed, key.step, key.stream, i, j);
+            collision_update(p, kbt, ends.mu(), &mut rng)
+        }))
+    };
+    sweep_drawing(sys, stream, order, Draws::Keyed, change);
+    sys.record_heat(mark);
+}
+
+/// The L update of one pair (see [`collide`]) with collision probability `p`, inverse reduced
+/// mass `mu` and the pair's stream `rng`: no change, or `u -> sqrt(kbt mu) R`.
+#[inline(always)]
+pub fn collision_update(p: f64, kbt: f64, mu: f64, rng: &mut PairRng) -> Change {
+    let uniform = (rng.next_u64() >> 11) as f64 * f64::EPSILON / 2.0;
+    let (slope, offset) = match uniform < p {
+        true => per_mass(-1.0, (kbt * mu).sqrt() * rng.normal(), mu),
+        false => (0.0, 0.0),
+    };
+    Change {
+        slope,
+        offset,
+        conservative: 0.0,
     }
 }
 

@@ -64,7 +64,7 @@ impl EnergyBalance {
     }
 }
 
-/// Whether heat and shadow work are defined for `scheme` on `sys`: every stage is A, B, O or
+/// Whether heat and shadow work are defined for `scheme` on `sys`: every stage is A, B, O, L or
 /// O-BBK, and the scene is at equilibrium (no shear, walls or body force).
 pub fn balance_defined(sys: &System, scheme: &dyn Scheme) -> Result<(), ParamError> {
     let refuse = |value: &str, why: &str| Err(ParamError::new("scheme", value, why));
@@ -72,20 +72,20 @@ pub fn balance_defined(sys: &System, scheme: &dyn Scheme) -> Result<(), ParamErr
         return refuse(
             scheme.name(),
             "is hand-written: heat and shadow work are defined for schemes written in the \
-             scheme language from A, B, O and Ob",
+             scheme language from A, B, O, Ob and L",
         );
     };
     for stage in &program.stages {
         let why = match stage.flow {
-            Flow::A | Flow::B | Flow::O | Flow::Bbk => continue,
+            Flow::A | Flow::B | Flow::O | Flow::Bbk | Flow::L => continue,
             Flow::T => {
                 "has a T stage, which relaxes pairs towards the conservative force and so \
                  preserves neither the energy nor the Gibbs measure: its energy change is \
-                 neither heat nor work (valid stages: A, B, O, Ob)"
+                 neither heat nor work (valid stages: A, B, O, Ob, L)"
             }
             Flow::F => {
                 "has an F stage, an explicit stochastic kick that does not preserve the Gibbs \
-                 measure: its energy change is neither heat nor work (valid stages: A, B, O, Ob)"
+                 measure: its energy change is neither heat nor work (valid stages: A, B, O, Ob, L)"
             }
         };
         return refuse(scheme.name(), why);
@@ -205,7 +205,10 @@ mod tests {
         for source in ["TAT", "F A F"] {
             let e = EnergyBalance::start(&mut sys, &scheme(source)).unwrap_err();
             assert_eq!(e.field, "scheme");
-            assert!(e.to_string().contains("valid stages: A, B, O, Ob"), "{e}");
+            assert!(
+                e.to_string().contains("valid stages: A, B, O, Ob, L"),
+                "{e}"
+            );
         }
         let mut sys = rebuilt(&sys, sys.params().clone())
             .body_force(crate::Vec3::new(0.1, 0.0, 0.0))

@@ -21,6 +21,8 @@ use serde::{Deserialize, Serialize};
 /// - `rc`: cutoff radius (finite, > 0), which sizes the neighbour cells; optionally
 ///   `r_c,ij <= rc` per pair of types (`rc_matrix`).
 /// - `s`: weight exponent, `w_D = (1 - r/r_c)^s`, `w_R = (1 - r/r_c)^(s/2)` (finite, > 0).
+/// - `collision_rate`: the Lowe-Andersen collision frequency Gamma of every pair within `rc`
+///   (per unit time, finite, > 0), for schemes with an L stage; unset otherwise.
 ///
 /// A matrix whose entries are all equal (for the cut-offs: all equal to `rc`) is stored as one
 /// value, so that a system whose pairs share a coefficient runs the loops of one.
@@ -40,6 +42,7 @@ pub struct Params {
     /// `r_c,ij` row-major when some differs from `rc`; else empty.
     rc_ij: Vec<f64>,
     s: f64,
+    collision_rate: Option<f64>,
 }
 
 /// Unvalidated parameters; [`ParamsBuilder::build`] checks them. Defaults are the standard
@@ -64,6 +67,11 @@ pub struct ParamsBuilder {
     pub rc_matrix: Option<Vec<Vec<f64>>>,
     /// Weight exponent `s`.
     pub weight_exponent: f64,
+    /// Lowe-Andersen collision frequency Gamma (per unit time), for schemes with L. Not in
+    /// the serialised form, whose layout checkpoints of version 7 and 8 fixed: checkpoints
+    /// store it after the topology (`crate::checkpoint`).
+    #[serde(skip)]
+    pub collision_rate: Option<f64>,
 }
 
 impl Default for ParamsBuilder {
@@ -76,6 +84,7 @@ impl Default for ParamsBuilder {
             rc: 1.0,
             rc_matrix: None,
             weight_exponent: 2.0,
+            collision_rate: None,
         }
     }
 }
@@ -116,6 +125,11 @@ impl ParamsBuilder {
         self.weight_exponent = s;
         self
     }
+    /// Lowe-Andersen collision frequency Gamma, per unit time.
+    pub fn collision_rate(mut self, rate: f64) -> Self {
+        self.collision_rate = Some(rate);
+        self
+    }
 
     /// Validate every field; the first invalid one is reported.
     pub fn build(self) -> Result<Params, ParamError> {
@@ -136,6 +150,9 @@ impl ParamsBuilder {
         let kbt = positive("kbt", self.kbt)?;
         let rc = positive("rc", self.rc)?;
         let s = positive("weight_exponent", self.weight_exponent)?;
+        let collision_rate = (self.collision_rate)
+            .map(|g| positive("collision_rate", g))
+            .transpose()?;
         let gamma_ij = match &self.gamma_matrix {
             Some(rows) => symmetric("gamma_matrix", rows, types, at_least_zero)?,
             None => vec![gamma],
@@ -181,6 +198,7 @@ impl ParamsBuilder {
             rc,
             rc_ij: differ(rc_ij, rc),
             s,
+            collision_rate,
         })
     }
 }
@@ -270,6 +288,10 @@ impl Params {
     pub fn weight_exponent(&self) -> f64 {
         self.s
     }
+    /// The Lowe-Andersen collision frequency Gamma (per unit time), if set.
+    pub fn collision_rate(&self) -> Option<f64> {
+        self.collision_rate
+    }
 
     /// `w_R(r) = (1 - r/r_c)^(s/2)` for `r < r_c`, given `w = 1 - r/r_c`.
     #[inline(always)]
@@ -303,6 +325,7 @@ impl From<Params> for ParamsBuilder {
             rc: p.rc,
             rc_matrix: matrix(&p.rc_ij),
             weight_exponent: p.s,
+            collision_rate: p.collision_rate,
         }
     }
 }
@@ -327,6 +350,8 @@ mod tests {
             (Params::builder().kbt(f64::INFINITY), "kbt"),
             (Params::builder().rc(-1.0), "rc"),
             (Params::builder().weight_exponent(0.0), "weight_exponent"),
+            (Params::builder().collision_rate(0.0), "collision_rate"),
+            (Params::builder().collision_rate(f64::NAN), "collision_rate"),
             (Params::builder().a(f64::NAN), "a[0][0]"),
             (
                 Params::builder().a_matrix(vec![vec![1.0, 2.0], vec![3.0, 1.0]]),

@@ -5,7 +5,28 @@ use dpd_core::bonded::{Angle, AngleStyle, Bond, BondStyle, Topology};
 use dpd_core::flow::{bbk, drift, full_force, kick, ou, trotter};
 use dpd_core::init::{equilibrium_box, maxwell_momenta};
 use dpd_core::params::ParamsBuilder;
-use dpd_core::{AdvanceError, BlowUp, Params, Scheme, SweepOrder, System, SystemBuilder, Vec3};
+use dpd_core::{
+    AdvanceError, BlowUp, Params, PeriodicBox, Scheme, SweepOrder, System, SystemBuilder, Vec3,
+};
+
+/// `pairs` isolated pairs at separation 0.5 on a cubic lattice of spacing 3 r_c (pairs do not
+/// interact with each other), particles `2k` and `2k + 1`, the pair direction cycling through
+/// x, y and z: the box and the positions.
+pub fn isolated_pairs(pairs: usize) -> (PeriodicBox, Vec<Vec3>) {
+    let side = (pairs as f64).cbrt().ceil() as usize;
+    let bx = PeriodicBox::cubic(3.0 * side as f64).unwrap();
+    let mut q = Vec::new();
+    for k in 0..pairs {
+        let c = Vec3::new(
+            (k % side) as f64,
+            ((k / side) % side) as f64,
+            (k / side / side) as f64,
+        ) * 3.0;
+        let dir = [Vec3::x(), Vec3::y(), Vec3::z()][k % 3];
+        q.extend([c, c + 0.5 * dir]);
+    }
+    (bx, q)
+}
 
 /// A system of `n` unit-mass particles at `density` with the given parameters, Maxwell
 /// momenta and uniform positions.

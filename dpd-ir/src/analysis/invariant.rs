@@ -10,6 +10,12 @@
 //! - A, B: `exp(c A)`, `exp(c B)`.
 //! - O: a sweep over `K` non-commuting pair generators, `exp(c O_1) ... exp(c O_K)` applied in
 //!   visiting order (a `Reverse` sweep visits `K, ..., 1`).
+//! - L: Lowe-Andersen collisions, stand in the same letters `O_k`. One pair's collisions
+//!   over `h` act as `exp(-Gamma h) + (1 - exp(-Gamma h)) P_k` (`P_k` redraws the pair's
+//!   relative normal velocity from its Maxwellian, `P_k^2 = P_k`), which is exactly
+//!   `exp(h G_k)` with the jump generator `G_k = Gamma (P_k - 1)`; `P_k` keeps `rho`, so
+//!   `G_k` annihilates it, the one property of `O_k` the criterion uses. The language does not
+//!   mix L with O, Ob, T or F, so the letters never stand for two thermostats at once.
 //! - Bbk: an inexact O: per pair `exp(c O_k + c^3 E_k)`, the extra generator `E_k` (degree 3,
 //!   weakly second order) does not annihilate `rho`.
 //! - T: per pair `exp(c (B_k + O_k))`, `B_k` the pair's share of the conservative kick. When a
@@ -192,7 +198,7 @@ fn adjoint_factors<S: Scalar>(
         match stage.flow {
             Flow::A => factors.push(vec![(Letters::A, c.clone())]),
             Flow::B => factors.push(letters.kick(stage, c)),
-            Flow::O => factors.extend(pairs.map(|k| vec![(letters.o(k), c.clone())])),
+            Flow::O | Flow::L => factors.extend(pairs.map(|k| vec![(letters.o(k), c.clone())])),
             Flow::Bbk => {
                 let cube = c.times(c).times(c);
                 factors.extend(

@@ -185,7 +185,7 @@ impl<'a> Expander<'a> {
             if a.order.is_some() && !l.flow.is_successive_sweep() {
                 return Err(Diagnostic::new(
                     format!(
-                        "sweep order '<' or '>' only applies to the successive sweeps O, Ob and T, not to {}",
+                        "sweep order '<' or '>' only applies to the successive sweeps O, Ob, T and L, not to {}",
                         a.name
                     ),
                     a.span.clone(),

@@ -43,7 +43,7 @@ pub const GROUPS: [Group; 2] = [
 
 /// Every sub-flow letter. Spellings start with an uppercase letter followed by lowercase
 /// letters only, so that `ObBAB` reads as `Ob B A B`.
-pub const LETTERS: [Letter; 6] = [
+pub const LETTERS: [Letter; 7] = [
     Letter {
         spelling: "A",
         flow: Flow::A,
@@ -79,6 +79,12 @@ pub const LETTERS: [Letter; 6] = [
         flow: Flow::F,
         meaning: "explicit full-force kick p += h (F^C + F^D + F^R), all forces or F[pair]",
         groups: &[ForceGroup::Pair],
+    },
+    Letter {
+        spelling: "L",
+        flow: Flow::L,
+        meaning: "Lowe-Andersen pairwise collisions at rate Gamma, exact in distribution",
+        groups: &[],
     },
 ];
 
@@ -117,7 +123,7 @@ pub fn group_spellings() -> String {
         .join(", ")
 }
 
-/// "A, B, O, Ob, T, F": the letters, for messages.
+/// "A, B, O, Ob, T, F, L": the letters, for messages.
 pub fn spellings() -> String {
     LETTERS
         .iter()
@@ -169,7 +175,7 @@ mod tests {
             assert_eq!(letter(l.spelling), Some(&l));
             assert_eq!(spelling(l.flow), l.spelling);
         }
-        assert_eq!(spellings(), "A, B, O, Ob, T, F");
+        assert_eq!(spellings(), "A, B, O, Ob, T, F, L");
         for g in GROUPS {
             assert_eq!(group(g.spelling), Some(&g));
             assert_eq!(group_spelling(g.group), g.spelling);

@@ -21,7 +21,7 @@ pub fn lower(source: &str, apps: Vec<Application>) -> Result<Program, Vec<Diagno
 }
 
 /// Successive sweeps without an explicit order alternate Forward, Reverse, Forward, ... in
-/// order of appearance (counting all O, Ob and T sweeps of the step); other flows are Forward.
+/// order of appearance (counting all O, Ob, T and L sweeps of the step); other flows are Forward.
 fn with_sweep_orders(mut apps: Vec<Application>) -> Vec<Application> {
     let mut sweeps = 0;
     for a in &mut apps {

@@ -18,6 +18,7 @@
 //! | `Ob` | pairwise Ornstein-Uhlenbeck sweep with Shardlow's BBK update |
 //! | `T` | pairwise conservative + Ornstein-Uhlenbeck sweep, exact per pair |
 //! | `F` | explicit full-force kick p += h (F^C + F^D + F^R), all forces or F[pair] |
+//! | `L` | Lowe-Andersen pairwise collisions at rate Gamma, exact in distribution |
 //!
 //! Names of sub-flows and sub-schemes start with an uppercase letter and continue with
 //! lowercase letters, digits or `_`, so an uppercase letter always starts a new name:

@@ -26,6 +26,7 @@ pub fn validate(apps: &[Application], len: usize, options: &Options) -> Vec<Diag
     errors.extend(stochastic_steps_positive(apps));
     errors.extend(has_drift(apps, &whole));
     errors.extend(has_conservative_force(apps, &whole));
+    errors.extend(one_thermostat(apps));
     if !options.allow_inconsistent {
         errors.extend(consistent(apps));
     }
@@ -40,8 +41,9 @@ fn finite(apps: &[Application]) -> Vec<Diagnostic> {
         .collect()
 }
 
-/// O, Ob and T cannot run backwards: the variance factor 1 - exp(-2 tau h) of the exact OU
-/// step turns negative for h < 0, and a zero step is a wasted sweep.
+/// O, Ob, T and L cannot run backwards: the variance factor 1 - exp(-2 tau h) of the exact OU
+/// step (L: the collision probability 1 - exp(-Gamma h)) turns negative for h < 0, and a zero
+/// step is a wasted sweep.
 fn stochastic_steps_positive(apps: &[Application]) -> Vec<Diagnostic> {
     apps.iter()
         .filter(|a| a.flow.needs_positive_step() && !a.coeff.is_positive())
@@ -84,6 +86,23 @@ fn has_conservative_force(apps: &[Application], whole: &Span) -> Option<Diagnost
     })
 }
 
+/// Lowe-Andersen collisions (L) thermostat a scheme alone: with the pairwise friction of O,
+/// Ob, T or F as well, the step would approximate a dynamics with two thermostats, and the
+/// order analysis counts every stochastic stage as one thermostat generator (its O sum).
+fn one_thermostat(apps: &[Application]) -> Option<Diagnostic> {
+    let collision = apps.iter().find(|a| a.flow == Flow::L)?;
+    let friction = apps
+        .iter()
+        .find(|a| a.flow.is_stochastic() && a.flow != Flow::L)?;
+    Some(Diagnostic::new(
+        format!(
+            "L (Lowe-Andersen collisions) cannot be combined with the pairwise friction of {}: a scheme thermostats with L alone or with O, Ob, T and F",
+            spelling(friction.flow)
+        ),
+        collision.span.clone(),
+    ))
+}
+
 /// A generator of the DPD dynamics (algorithms.md section 4): the drift, a kick (all forces,
 /// or one force group in a scheme that names groups) and the thermostat.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -108,7 +127,7 @@ impl Generator {
         match self {
             Generator::A => "A coefficients (A stages)".to_string(),
             Generator::Kick(k) => format!("{k} coefficients ({} stages)", k.carriers()),
-            Generator::O => "O coefficients (O, Ob, T and F stages)".to_string(),
+            Generator::O => "O coefficients (O, Ob, T, F and L stages)".to_string(),
         }
     }
 }

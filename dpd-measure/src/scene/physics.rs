@@ -6,7 +6,8 @@ use dpd_core::params::ParamsBuilder;
 use dpd_core::{ParamError, Params};
 use serde::{Deserialize, Serialize};
 
-/// Keys `a`, `gamma`, `kbt`, `mass`, `weight_exponent`, `shear_rate`, `body_force`.
+/// Keys `a`, `gamma`, `kbt`, `mass`, `weight_exponent`, `collision_rate`, `shear_rate`,
+/// `body_force`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Physics {
@@ -20,6 +21,8 @@ pub struct Physics {
     pub mass: f64,
     /// Weight exponent s: w_D = (1 - r)^s, w_R = (1 - r)^(s/2).
     pub weight_exponent: f64,
+    /// Lowe-Andersen collision frequency Gamma per pair (per unit time), for schemes with L.
+    pub collision_rate: Option<f64>,
     /// Lees-Edwards shear rate kappa (x-velocity gradient along y); a non-zero rate measures
     /// the shear viscosity.
     pub shear_rate: Option<f64>,
@@ -37,6 +40,7 @@ impl Default for Physics {
             kbt: 1.0,
             mass: 1.0,
             weight_exponent: 2.0,
+            collision_rate: None,
             shear_rate: None,
             body_force: None,
         }
@@ -54,6 +58,9 @@ impl Physics {
         }
         non_negative("a", self.a)?;
         non_negative("gamma", self.gamma)?;
+        if let Some(rate) = self.collision_rate {
+            positive("collision_rate", rate)?;
+        }
         if let Some(k) = self.shear_rate {
             require("shear_rate", k, k.is_finite(), "must be finite")?;
         }
@@ -70,11 +77,14 @@ impl Physics {
 
     /// The pair-force parameters of one particle type, unvalidated.
     pub fn builder(&self) -> ParamsBuilder {
-        Params::builder()
-            .a(self.a)
-            .gamma(self.gamma)
-            .kbt(self.kbt)
-            .weight_exponent(self.weight_exponent)
+        ParamsBuilder {
+            collision_rate: self.collision_rate,
+            ..Params::builder()
+                .a(self.a)
+                .gamma(self.gamma)
+                .kbt(self.kbt)
+                .weight_exponent(self.weight_exponent)
+        }
     }
 
     /// Whether the scene is sheared at a non-zero rate (and so measures the viscosity).
