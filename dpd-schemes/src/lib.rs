@@ -20,6 +20,7 @@
 //! | [`prk`] | PRK3 Ruth, Iwatsu A and B (frozen noise); Ruth's sequence with exact O |
 //! | [`composition`] | Yoshida's triple jump composed symmetrically with exact O |
 //! | [`exponential`] | SETD, MSETD for small masses |
+//! | [`lowe`] | Lowe-Andersen collisions: Lowe's velocity Verlet + L, the ABOBA ordering ABLBA |
 //!
 //! [`check`] reports the analysis of a registry name or a scheme string (`dpd check`).
 //! [`stability`] runs every registered scheme over a matrix of friction, mass and time step.
@@ -32,6 +33,7 @@ pub mod check;
 pub mod composition;
 pub mod exponential;
 pub mod langevin;
+pub mod lowe;
 pub mod prk;
 pub mod registry;
 pub mod shardlow;

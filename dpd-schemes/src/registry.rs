@@ -10,7 +10,7 @@ use dpd_ir::lang::{Diagnostic, Options};
 use serde::Serialize;
 use thiserror::Error;
 
-use crate::{composition, exponential, langevin, prk, shardlow, trotter, verlet};
+use crate::{composition, exponential, langevin, lowe, prk, shardlow, trotter, verlet};
 
 /// What the catalogue claims about a scheme, written once here.
 ///
@@ -225,7 +225,7 @@ const PRK_DPD: &str = "Fluids 4, 156 (2019), doi:10.3390/fluids4030156";
 const ETD: &str =
     "N. Phan-Thien, N. Mai-Duy, D. Pan and B. C. Khoo, Comput. Phys. Commun. 185, 229 (2014)";
 
-static ENTRIES: [Entry; 21] = [
+static ENTRIES: [Entry; 23] = [
     entry(
         "vv",
         &["velocity-verlet", "groot-warren", "gw"],
@@ -295,6 +295,24 @@ static ENTRIES: [Entry; 21] = [
         "velocity Verlet between two exact half sweeps",
         "G. Bussi and M. Parrinello, Phys. Rev. E 75, 056707 (2007)",
         || Box::new(langevin::obabo()),
+        None,
+        splitting(1, 1, 2, Some(2), true),
+    ),
+    entry(
+        "lowe-andersen",
+        &["lowe", "vv-la"],
+        "Lowe's scheme: velocity Verlet, then a Lowe-Andersen collision sweep (needs collision_rate)",
+        "C. P. Lowe, Europhys. Lett. 47, 145 (1999)",
+        || Box::new(lowe::lowe_andersen()),
+        None,
+        splitting(1, 1, 2, Some(2), false),
+    ),
+    entry(
+        "ablba",
+        &["aboba-la"],
+        "ABOBA with Lowe-Andersen collisions in place of O (needs collision_rate)",
+        "this crate (issue 49), after Lowe (1999) and Shang (2021)",
+        || Box::new(lowe::ablba()),
         None,
         splitting(1, 1, 2, Some(2), true),
     ),

@@ -13,7 +13,8 @@ fn mixed_box() -> System {
         1.0,
         Params::builder()
             .a_matrix(vec![vec![25.0, 40.0], vec![40.0, 25.0]])
-            .gamma(4.5),
+            .gamma(4.5)
+            .collision_rate(common::COLLISION_RATE),
         0.01,
         11,
     );
