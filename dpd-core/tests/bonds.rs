@@ -209,7 +209,10 @@ fn a_fene_bond_reaching_its_reach_is_a_blow_up_naming_it() {
     let error = blow_up(sys.advance(&scheme("ABOBA"), 5));
     assert_eq!(error.step, 0);
     assert!(
-        error.reason.contains("bond 0 between particles 0 and 1"),
+        error.reason.contains("bond 0 between particles 0 and 1")
+            && error
+                .reason
+                .ends_with("of its style fene (K = 30, R0 = 1.5)"),
         "{}",
         error.reason
     );

@@ -32,6 +32,16 @@ pub enum AngleStyle {
     CosineSquared { k: f64, theta0: f64 },
 }
 
+/// In LAMMPS's words: `harmonic (K = 100, r0 = 0.7)`, `fene (K = 30, R0 = 1.5)`.
+impl std::fmt::Display for BondStyle {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            BondStyle::Harmonic { k, r0 } => write!(f, "harmonic (K = {k}, r0 = {r0})"),
+            BondStyle::Fene { k, r_max } => write!(f, "fene (K = {k}, R0 = {r_max})"),
+        }
+    }
+}
+
 impl BondStyle {
     /// Check the coefficients; `field` names the bond type, e.g. `bond_types[1]`.
     pub(crate) fn check(&self, field: &str) -> Result<(), ParamError> {

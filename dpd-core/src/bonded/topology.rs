@@ -62,29 +62,18 @@ impl TopologyBuilder {
             style.check(&format!("angle_types[{t}]"))?;
         }
         for (b, bond) in self.bonds.iter().enumerate() {
-            let what = format!("bond {b} (ids {}, {})", bond.i, bond.j);
+            // Messages are formatted only on failure: set-up of a large melt checks every bond.
+            let what = || format!("bond {b} (ids {}, {})", bond.i, bond.j);
             let field = |name: &str| format!("bonds[{b}].{name}");
-            self.check_ids(&what, &[("i", bond.i), ("j", bond.j)], field)?;
-            check_kind(
-                &what,
-                field("kind"),
-                bond.kind,
-                self.bond_types.len(),
-                "bond",
-            )?;
+            self.check_ids(what, &[("i", bond.i), ("j", bond.j)], field)?;
+            check_kind(what, field, bond.kind, self.bond_types.len(), "bond")?;
         }
         for (a, angle) in self.angles.iter().enumerate() {
-            let what = format!("angle {a} (ids {}, {}, {})", angle.i, angle.j, angle.k);
+            let what = || format!("angle {a} (ids {}, {}, {})", angle.i, angle.j, angle.k);
             let field = |name: &str| format!("angles[{a}].{name}");
             let ids = [("i", angle.i), ("j", angle.j), ("k", angle.k)];
-            self.check_ids(&what, &ids, field)?;
-            check_kind(
-                &what,
-                field("kind"),
-                angle.kind,
-                self.angle_types.len(),
-                "angle",
-            )?;
+            self.check_ids(what, &ids, field)?;
+            check_kind(what, field, angle.kind, self.angle_types.len(), "angle")?;
         }
         Ok(Topology {
             particles: self.particles,
@@ -98,7 +87,7 @@ impl TopologyBuilder {
     /// Every id below the particle count and different from the ones before it.
     fn check_ids(
         &self,
-        what: &str,
+        what: impl Fn() -> String,
         ids: &[(&str, u32)],
         field: impl Fn(&str) -> String,
     ) -> Result<(), ParamError> {
@@ -108,7 +97,8 @@ impl TopologyBuilder {
                     field(name),
                     id,
                     format!(
-                        "{what}: ids must be < {} (the particle count)",
+                        "{}: ids must be < {} (the particle count)",
+                        what(),
                         self.particles
                     ),
                 ));
@@ -117,7 +107,10 @@ impl TopologyBuilder {
                 return Err(ParamError::new(
                     field(name),
                     id,
-                    format!("{what}: must differ from {other}, a particle cannot bond to itself"),
+                    format!(
+                        "{}: must differ from {other}, a particle cannot bond to itself",
+                        what()
+                    ),
                 ));
             }
         }
@@ -127,8 +120,8 @@ impl TopologyBuilder {
 
 /// A bond or angle type below the number of types.
 fn check_kind(
-    what: &str,
-    field: String,
+    what: impl Fn() -> String,
+    field: impl Fn(&str) -> String,
     kind: u16,
     types: usize,
     noun: &str,
@@ -137,9 +130,9 @@ fn check_kind(
         Ok(())
     } else {
         Err(ParamError::new(
-            field,
+            field("kind"),
             kind,
-            format!("{what}: must be < {types} (the number of {noun} types)"),
+            format!("{}: must be < {types} (the number of {noun} types)", what()),
         ))
     }
 }

@@ -72,7 +72,7 @@ impl System {
         let bond = topology.bonds()[o.bond];
         format!(
             "bond {} between particles {} and {} reached length {:.6}, at or beyond the reach \
-             of its style {:?}",
+             of its style {}",
             o.bond,
             bond.i,
             bond.j,
