@@ -39,9 +39,16 @@ pub struct Change {
 /// and recording switches are resolved here, once per sweep, not per pair.
 #[inline(always)]
 fn sweep(sys: &mut System, stream: u8, order: SweepOrder, changes: impl Changes) {
-    let changes =
-        move |_: Noise, span: Span, z: &[f64], out: &mut Vec<Change>| changes(span, z, out);
-    sweep_drawing(sys, stream, order, Draws::Normals, changes);
+    sweep_drawing(
+        sys,
+        stream,
+        order,
+        Draws::Normals,
+        // Inlined, as every closure between the engine and the lanes: the engine's AVX2
+        // context reaches the O sweep's vector code only through inlined calls.
+        #[inline(always)]
+        move |_: Noise, span: Span, z: &[f64], out: &mut Vec<Change>| changes(span, z, out),
+    );
 }
 
 /// Where the random numbers of a sweep's pairs come from.
