@@ -147,29 +147,52 @@ fn pair_groups_run_bitwise_as_the_ungrouped_scheme() {
     );
 }
 
-/// On a melt of bonded chains (harmonic and FENE bonds, both angle styles), r-RESPA with the
-/// bonds on the inner step runs bit for bit the same from `dpd_scheme!` and from the run-time
-/// compiler, and so do ABOBA and velocity Verlet, which apply all forces together.
-#[test]
-fn bonded_melt_runs_the_same_from_the_macro_and_the_compiler() {
-    fn melt() -> System {
-        common::melt(50, 6, dpd::Params::builder(), SEED)
-            .dt(DT)
-            .build()
-            .unwrap()
-    }
+/// A melt of 50 bonded chains of 6 beads (harmonic and FENE bonds, both angle styles), its
+/// bonded pairs excluded from the pair forces or not.
+fn melt(exclude: bool) -> System {
+    common::melt(50, 6, dpd::Params::builder(), SEED)
+        .exclude_bonded(exclude)
+        .dt(DT)
+        .build()
+        .unwrap()
+}
+
+/// r-RESPA with the bonds on the inner step runs bit for bit the same from `dpd_scheme!` and
+/// from the run-time compiler from `start`, and so do ABOBA and velocity Verlet, which apply
+/// all forces together, against the reference steps.
+fn bonded_schemes_agree(start: fn() -> System) {
     const RESPA: &str = "B[pair](1/2) (B[bond](1/8) A(1/4) B[bond](1/8))^4 O B[pair](1/2)";
     assert_same_trajectory_from(
-        melt,
+        start,
         &dpd_scheme!("B[pair](1/2) (B[bond](1/8) A(1/4) B[bond](1/8))^4 O B[pair](1/2)"),
         &dynamic(RESPA),
         200,
     );
-    assert_same_trajectory_from(melt, &dpd_scheme!("ABOBA"), &reference::Aboba, 200);
+    assert_same_trajectory_from(start, &dpd_scheme!("ABOBA"), &reference::Aboba, 200);
     assert_same_trajectory_from(
-        melt,
+        start,
         &dpd_scheme!("F(1/2) A F(1/2)"),
         &reference::VelocityVerlet,
+        200,
+    );
+}
+
+/// [`bonded_schemes_agree`] on the melt.
+#[test]
+fn bonded_melt_runs_the_same_from_the_macro_and_the_compiler() {
+    bonded_schemes_agree(|| melt(false));
+}
+
+/// [`bonded_schemes_agree`] on the melt with its bonded pairs excluded, and SAS with the bonds
+/// on B[bond] (its T sweeps read the table the exclusion filtered).
+#[test]
+fn excluded_melt_runs_the_same_from_the_macro_and_the_compiler() {
+    bonded_schemes_agree(|| melt(true));
+    const SAS: &str = "T(1/2) B[bond](1/2) A B[bond](1/2) T(1/2)";
+    assert_same_trajectory_from(
+        || melt(true),
+        &dpd_scheme!("T(1/2) B[bond](1/2) A B[bond](1/2) T(1/2)"),
+        &dynamic(SAS),
         200,
     );
 }

@@ -285,7 +285,8 @@ fn outputs() -> BTreeMap<&'static str, Vec<Value>> {
         d,
         "melt.toml",
         &format!(
-            "{tiny}[[bond_types]]\nname = \"h\"\nstyle = \"harmonic\"\nk = 2.0\nr0 = 0.5\n\
+            "{tiny}exclude_bonded = true\n\
+             [[bond_types]]\nname = \"h\"\nstyle = \"harmonic\"\nk = 2.0\nr0 = 0.5\n\
              [[bond_types]]\nname = \"f\"\nstyle = \"fene\"\nk = 30.0\nr_max = 1.5\n\
              [[angle_types]]\nname = \"c\"\nstyle = \"cosine_squared\"\nk = 2.0\n\
              theta0 = 120.0\n\

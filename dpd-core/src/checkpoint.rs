@@ -5,15 +5,17 @@
 //! (shear rate, offset, travel), the walls with their frozen particles, the body force, the positions and the Lees-Edwards state of the last
 //! neighbour-list build (which fix the sweep order and the next rebuild), the name of the
 //! scheme, the topology (bonds and angles by id, from version 8), the Lowe-Andersen collision
-//! rate (from version 9), and what a scheme carries between steps (the full forces of velocity Verlet, with
+//! rate (from version 9), whether bonded pairs are excluded from the pair forces (from version
+//! 10), and what a scheme carries between steps (the full forces of velocity Verlet, with
 //! their noise). Pair geometry and conservative forces are not stored: they are pure functions
 //! of the positions and the list, recomputed in the same pair order, hence bitwise equal. A restarted run
 //! therefore continues bit for bit like an uninterrupted one.
 //!
 //! File layout: 8 magic bytes `DPDCHKPT`, format version (u32 LE), payload length (u64 LE),
 //! CRC-32 of the payload (u32 LE), payload (bincode: the fields of `Payload`, then, from
-//! version 8, the optional topology, and from version 9 the optional collision rate; version 7
-//! and 8 files, without them, still load). Writes go to a temporary file in the same
+//! version 8, the optional topology, from version 9 the optional collision rate and from
+//! version 10 the exclusion flag; version 7 to 9 files, without them, still load, excluding
+//! nothing). Writes go to a temporary file in the same
 //! directory, are synced, then renamed over the target, so an interrupted write never destroys
 //! the previous checkpoint.
 
@@ -29,9 +31,9 @@ use std::io::Write;
 use std::path::Path;
 
 const MAGIC: &[u8; 8] = b"DPDCHKPT";
-const VERSION: u32 = 9;
-/// The oldest version read: version 7 is version 9 without the topology and the collision
-/// rate, version 8 without the collision rate.
+const VERSION: u32 = 10;
+/// The oldest version read: version 7 is version 10 without the topology, the collision rate
+/// and the exclusion flag, version 8 without the last two, version 9 without the flag.
 const OLDEST: u32 = 7;
 const HEADER: usize = 8 + 4 + 8 + 4;
 
@@ -117,6 +119,7 @@ impl System {
         let mut data = bincode::serialize(&payload).map_err(encode)?;
         bincode::serialize_into(&mut data, &self.topology()).map_err(encode)?;
         bincode::serialize_into(&mut data, &self.params().collision_rate()).map_err(encode)?;
+        bincode::serialize_into(&mut data, &self.excludes_bonded()).map_err(encode)?;
         let mut bytes = Vec::with_capacity(HEADER + data.len());
         bytes.extend_from_slice(MAGIC);
         bytes.extend_from_slice(&VERSION.to_le_bytes());
@@ -193,6 +196,11 @@ impl System {
         } else {
             None
         };
+        let exclude_bonded: bool = if version >= 10 {
+            bincode::deserialize_from(&mut rest).map_err(decode)?
+        } else {
+            false
+        };
         let invalid = |source| CheckpointError::Invalid {
             path: name.clone(),
             source,
@@ -220,7 +228,7 @@ impl System {
             builder = builder.body_force(g);
         }
         if let Some(t) = topology {
-            builder = builder.topology(t);
+            builder = builder.topology(t).exclude_bonded(exclude_bonded);
         }
         let mut sys = builder.build().map_err(invalid)?;
         sys.resume(Continuation {
@@ -245,7 +253,7 @@ mod tests {
     fn system(topology: Option<Topology>) -> System {
         let b = equilibrium_box(Params::builder().build().unwrap(), 200, 3.0, 3).unwrap();
         match topology {
-            Some(t) => b.topology(t),
+            Some(t) => b.topology(t).exclude_bonded(true),
             None => b,
         }
         .build()
@@ -272,20 +280,26 @@ mod tests {
         sys.save_checkpoint(&path, "ABOBA").unwrap();
         let (back, _) = System::load_checkpoint(&path).unwrap();
         assert_eq!(back.topology(), Some(&t));
+        assert!(back.excludes_bonded());
         assert_eq!(back.ids(), sys.ids());
     }
 
-    /// Version 7 and 8 files (version 9 without the topology and the collision rate that
-    /// follow the payload, or without the rate) load.
+    /// Version 7, 8 and 9 files (version 10 without the topology, the collision rate and the
+    /// exclusion flag that follow the payload, without the last two, or without the flag) load,
+    /// excluding nothing.
     #[test]
-    fn version_7_and_8_checkpoints_load() {
+    fn version_7_8_and_9_checkpoints_load() {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("c.chk");
         let sys = system(None);
         sys.save_checkpoint(&path, "ABOBA").unwrap();
         let bytes = std::fs::read(&path).unwrap();
-        assert_eq!(bytes[bytes.len() - 2..], [0, 0], "bincode's None twice");
-        for (version, dropped) in [(7u32, 2), (8, 1)] {
+        assert_eq!(
+            bytes[bytes.len() - 3..],
+            [0, 0, 0],
+            "bincode's None twice, false"
+        );
+        for (version, dropped) in [(7u32, 3), (8, 2), (9, 1)] {
             let data = &bytes[HEADER..bytes.len() - dropped];
             let mut old = MAGIC.to_vec();
             old.extend_from_slice(&version.to_le_bytes());
@@ -299,6 +313,7 @@ mod tests {
                 (sys.positions(), "ABOBA")
             );
             assert!(back.topology().is_none() && back.params().collision_rate().is_none());
+            assert!(!back.excludes_bonded());
         }
     }
 

@@ -3,9 +3,12 @@
 
 mod common;
 
-use common::{blow_up, chain_melt};
+use common::{
+    assert_energy_error_of_order_dt_squared, blow_up, bond_lengths, bond_quantities, chain_melt,
+    integral,
+};
 use dpd_core::bonded::{AngleStyle, BondStyle};
-use dpd_core::observe::{block_mean, hamiltonian};
+use dpd_core::observe::block_mean;
 use dpd_core::{DynScheme, Params, System};
 
 fn scheme(source: &str) -> DynScheme {
@@ -36,50 +39,13 @@ fn melt(gamma: f64, dt: f64) -> System {
         .unwrap()
 }
 
-/// The melt after 5 time units of ABOBA (gamma = 4.5, dt = 0.01), then without friction and
-/// with time step `dt`.
-fn equilibrated_melt(dt: f64) -> System {
-    let mut sys = melt(4.5, 0.01);
-    sys.advance(&scheme("ABOBA"), 500).unwrap();
-    System::builder(
-        Params::builder().gamma(0.0).build().unwrap(),
-        *sys.boundary(),
-        sys.positions().to_vec(),
-    )
-    .momenta(sys.momenta().to_vec())
-    .ids(sys.ids().to_vec())
-    .topology(sys.topology().unwrap().clone())
-    .dt(dt)
-    .build()
-    .unwrap()
-}
-
-/// The root mean square of H(t) - H(0) over 2 time units of velocity Verlet without friction.
-fn energy_error(dt: f64) -> f64 {
-    let mut sys = equilibrated_melt(dt);
-    let vv = scheme("B(1/2) A B(1/2)");
-    let h0 = hamiltonian(&mut sys);
-    let steps = (2.0 / dt).round() as u64;
-    let mut sum = 0.0;
-    for _ in 0..steps {
-        sys.advance(&vv, 1).unwrap();
-        sum += (hamiltonian(&mut sys) - h0).powi(2);
-    }
-    (sum / steps as f64).sqrt()
-}
-
 /// Velocity Verlet without friction conserves H = K + U (pairs, bonds, angles) up to an error
 /// of order dt^2: halving dt divides the rms deviation over the same time by about 4 (measured
 /// 4.17 for dt 0.01 -> 0.005, 4.40 for 0.02 -> 0.01; a wrong force, not the gradient of the
 /// energy, leaves an error that does not shrink with dt).
 #[test]
 fn velocity_verlet_conserves_the_energy_of_a_bonded_melt_to_order_dt_squared() {
-    let (coarse, fine) = (energy_error(0.01), energy_error(0.005));
-    let ratio = coarse / fine;
-    assert!(
-        (3.5..4.5).contains(&ratio),
-        "rms {coarse:.3e} / {fine:.3e} = {ratio}"
-    );
+    assert_energy_error_of_order_dt_squared(melt(4.5, 0.01));
 }
 
 /// DPD's forces are pairwise and the bonded forces sum to zero: velocity Verlet with friction
@@ -93,23 +59,6 @@ fn a_bonded_melt_conserves_momentum() {
     let drift = (sys.total_momentum() - before).norm();
     assert!(drift < 1e-13 * scale, "{drift:e} of {scale}");
     assert!(sys.counters().bonded_force_evaluations >= 200);
-}
-
-/// `int_0^end f(r) dr` by Simpson's rule on 20 000 intervals.
-fn integral(end: f64, f: impl Fn(f64) -> f64) -> f64 {
-    let n = 20_000;
-    let h = end / n as f64;
-    let sum: f64 = (0..=n)
-        .map(|k| {
-            let weight = if k == 0 || k == n {
-                1.0
-            } else {
-                [2.0, 4.0][k % 2]
-            };
-            weight * f(k as f64 * h)
-        })
-        .sum();
-    sum * h / 3.0
 }
 
 /// Without pair repulsion (a = 0) but with DPD friction between all beads, trimers without an
@@ -137,28 +86,14 @@ fn bond_lengths_follow_the_boltzmann_distribution() {
         .unwrap();
     let baoab = scheme("BAOAB");
     sys.advance(&baoab, 200).unwrap();
-    let edges = [0.0, 0.3, 0.5, 0.7, 0.9, 1.1, 4.0];
-    let quantities = |r: f64| {
-        let bins = edges
-            .windows(2)
-            .map(move |w| f64::from(w[0] <= r && r < w[1]));
-        [r, r * r].into_iter().chain(bins).collect::<Vec<f64>>()
-    };
-    let count = quantities(0.0).len();
+    let count = bond_quantities(0.0).len();
     // series[style][quantity]: one mean over the trimers per snapshot.
     let mut series = vec![vec![Vec::new(); count]; 2];
     for _ in 0..1000 {
         sys.advance(&baoab, 10).unwrap();
-        let mut at = vec![0; sys.len()];
-        for (k, &id) in sys.ids().iter().enumerate() {
-            at[id as usize] = k;
-        }
         let mut sums = vec![vec![0.0; count]; 2];
-        for bond in sys.topology().unwrap().bonds() {
-            let q = sys.positions();
-            let d = q[at[bond.i as usize]] - q[at[bond.j as usize]];
-            let r = sys.boundary().min_image(d).norm();
-            for (s, x) in sums[bond.kind as usize].iter_mut().zip(quantities(r)) {
+        for (kind, r) in bond_lengths(&sys) {
+            for (s, x) in sums[kind as usize].iter_mut().zip(bond_quantities(r)) {
                 *s += x / 200.0;
             }
         }
@@ -176,7 +111,7 @@ fn bond_lengths_follow_the_boltzmann_distribution() {
         let density = |r: f64| r * r * (-bond.energy(r)).exp();
         let norm = integral(end, density);
         for (q, samples) in series.iter().enumerate() {
-            let exact = integral(end, |r| quantities(r)[q] * density(r)) / norm;
+            let exact = integral(end, |r| bond_quantities(r)[q] * density(r)) / norm;
             let (mean, error) = block_mean(samples, 20).unwrap();
             assert!(
                 (mean - exact).abs() < 4.5 * error + 1e-9,

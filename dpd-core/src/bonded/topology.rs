@@ -28,7 +28,8 @@ pub struct Angle {
 /// had when the system was built, whatever its storage order now).
 ///
 /// Bonded beads keep their soft pair repulsion (the DPD convention): a bond adds to the pair
-/// forces, it does not exclude the pair.
+/// forces, it does not exclude the pair, unless the system is built with
+/// [`crate::SystemBuilder::exclude_bonded`].
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(try_from = "TopologyBuilder", into = "TopologyBuilder")]
 pub struct Topology {

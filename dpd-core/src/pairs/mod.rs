@@ -1,15 +1,17 @@
 //! The interacting pairs of the current positions, with the geometry every sub-flow needs:
 //! the table (this module), its fill (`fill.rs`), the engine that visits it in the sweep order
 //! of [`crate::neighbour`] (`engine.rs`) and what the engine hands each pair update to read
-//! (`ends.rs`).
+//! (`ends.rs`), and the pairs a system leaves out of it (`exclude.rs`).
 
 mod ends;
 mod engine;
+mod exclude;
 mod fill;
 
 use ends::Momenta;
 pub(crate) use ends::{Ends, Particles, Span};
 pub(crate) use engine::{Run, Two};
+pub(crate) use exclude::Exclusions;
 
 use crate::chunked::Parts;
 use crate::disjoint::Disjoint;

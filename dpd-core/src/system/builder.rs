@@ -5,7 +5,7 @@ use crate::bonded::{Located, Topology};
 use crate::boundary::{LeesEdwards, PeriodicBox};
 use crate::error::{finite_vectors, positive, ParamError};
 use crate::neighbour::VerletList;
-use crate::pairs::PairTable;
+use crate::pairs::{Exclusions, PairTable};
 use crate::params::Params;
 use crate::stamp::{Generation, Stamp};
 use crate::walls::{FrozenWalls, Walls};
@@ -29,6 +29,7 @@ pub struct SystemBuilder {
     frozen: Option<Vec<bool>>,
     body_force: Option<Vec3>,
     topology: Option<Topology>,
+    exclude_bonded: bool,
 }
 
 impl SystemBuilder {
@@ -93,6 +94,14 @@ impl SystemBuilder {
     /// must be the system's. Without this call the system has no bonded forces.
     pub fn topology(mut self, topology: Topology) -> Self {
         self.topology = Some(topology);
+        self
+    }
+    /// Leave the bonded pairs out of the pair forces (`true`), as LAMMPS's `special_bonds lj 0 1
+    /// 1` does with `pair_style dpd`: two beads joined by a bond then have no conservative,
+    /// dissipative or random pair force, only the bond's. Default `false`: bonded beads keep
+    /// their soft repulsion (the DPD convention). Needs [`Self::topology`].
+    pub fn exclude_bonded(mut self, exclude: bool) -> Self {
+        self.exclude_bonded = exclude;
         self
     }
     pub fn build(self) -> Result<System, ParamError> {
@@ -219,6 +228,20 @@ impl SystemBuilder {
                 ));
             }
         }
+        let exclusions = match (&self.topology, self.exclude_bonded) {
+            (_, false) => None,
+            (None, true) => {
+                return Err(ParamError::new(
+                    "exclude_bonded",
+                    true,
+                    "needs a topology: a system without bonds has no bonded pairs to exclude",
+                ))
+            }
+            (Some(t), true) => {
+                let bonds = t.bonds().iter().map(|b| (b.i, b.j));
+                Some(Exclusions::of_pairs(n, bonds))
+            }
+        };
         let bonded = self.topology.map(|t| Located::new(t, &id));
         let inv_mass = match &walls {
             None => mass.iter().map(|m| 1.0 / m).collect(),
@@ -234,6 +257,7 @@ impl SystemBuilder {
             walls,
             body_force: self.body_force,
             bonded,
+            exclusions,
             params: self.params,
             q: vec![Vec3::zeros(); n],
             p,
@@ -288,6 +312,7 @@ impl System {
             frozen: None,
             body_force: None,
             topology: None,
+            exclude_bonded: false,
         }
     }
 }

@@ -54,12 +54,14 @@ impl System {
 
     /// Whether a force evaluation may fill the pair table and apply the forces run by run
     /// ([`PairTable::collect_then`]): the table is stale, the box is periodic without walls,
-    /// and no pair impulses are being recorded.
+    /// no pair impulses are being recorded and no pairs are excluded (their runs would be
+    /// applied before the exclusion).
     fn fills_plainly(&self) -> bool {
         !self.pairs_at.is_fresh(self.positions)
             && self.shear.is_none()
             && self.walls.is_none()
             && self.impulses.is_none()
+            && self.exclusions.is_none()
     }
 
     /// Full forces from the filled pair table; the pair virial of their dissipative and random

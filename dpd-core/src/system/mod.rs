@@ -4,7 +4,7 @@ use crate::bonded::{Located, Overstretch, Topology};
 use crate::boundary::{LeesEdwards, PeriodicBox};
 use crate::error::{finite_vectors, ParamError};
 use crate::neighbour::VerletList;
-use crate::pairs::PairTable;
+use crate::pairs::{Exclusions, PairTable};
 use crate::parallel::on_all_threads;
 use crate::params::Params;
 use crate::stamp::{Generation, Stamp};
@@ -62,6 +62,9 @@ pub struct System {
     /// Bonds and angles, by id and in storage indices; `None`: no topology, and no code path
     /// looks at bonds.
     bonded: Option<Located>,
+    /// The pairs without pair forces (the bonded ones, when the system excludes them);
+    /// `None`: every pair within the cut-off interacts, and no fill looks at exclusions.
+    exclusions: Option<Exclusions>,
     params: Params,
     q: Vec<Vec3>,
     p: Vec<Vec3>,
@@ -150,6 +153,10 @@ impl System {
     /// The bonds and angles, by particle id, if the system was built with a topology.
     pub fn topology(&self) -> Option<&Topology> {
         self.bonded.as_ref().map(Located::topology)
+    }
+    /// Whether bonded pairs are left out of the pair forces ([`SystemBuilder::exclude_bonded`]).
+    pub fn excludes_bonded(&self) -> bool {
+        self.exclusions.is_some()
     }
     /// The bonds and angles in storage indices.
     #[cfg(test)]
@@ -315,6 +322,9 @@ impl System {
                 &self.params,
                 &self.kind,
             );
+            if let Some(exclusions) = &self.exclusions {
+                self.pairs.exclude(exclusions, &self.id);
+            }
             self.pairs_filled();
         }
     }

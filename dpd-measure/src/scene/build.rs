@@ -71,8 +71,10 @@ impl Scene {
             let frozen = freeze_outside(&walls, &q, &mut p);
             builder = builder.walls(walls).frozen(frozen);
         }
+        self.molecules.check_exclusion(topology.is_some())?;
         if let Some(topology) = topology {
-            builder = builder.topology(topology);
+            let excluding = self.molecules.exclude_bonded;
+            builder = builder.topology(topology).exclude_bonded(excluding);
         }
         if let Some(k) = physics.shear_rate {
             builder = builder.shear_rate(k);

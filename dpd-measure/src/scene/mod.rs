@@ -11,7 +11,7 @@
 //! | [`RunSpec`] | `run.rs` | `scheme`, `dt`, `time`, `average_fraction`, `sample_interval`, `seed`, `runs`, `threads` |
 //! | [`Physics`] | `physics.rs` | `a`, `gamma`, `kbt`, `mass`, `weight_exponent`, `collision_rate`, `shear_rate`, `body_force` |
 //! | [`Species`] | `species.rs` | `[[species]]`, `[pairs]` |
-//! | [`Molecules`] | `molecules.rs` | `[[bond_types]]`, `[[angle_types]]`, `[[molecules]]` |
+//! | [`Molecules`] | `molecules.rs` | `[[bond_types]]`, `[[angle_types]]`, `[[molecules]]`, `exclude_bonded` |
 //! | [`Geometry`] | `geometry.rs` | `n`, `density`, `box`, `skin`, `init`, `init_reset`, `[walls]` |
 //! | [`Observe`] | `observe.rs` | `[rdf]`, `[vacf]`, `[profile]`, `energy_balance`, `like_neighbours` |
 //! | [`Output`] | `output.rs` | `description`, `[trajectory]`, `write_data` |
@@ -173,7 +173,10 @@ impl Scene {
             !self.observe.like_neighbours || self.species.species.is_some(),
             "needs [[species]] (with one species every neighbour is like)",
         )?;
-        self.chain_plans()?;
+        let chains = !self.chain_plans()?.is_empty();
+        // A data file's bonds are known once it is read (`Scene::system`).
+        let init = self.geometry.init.is_some();
+        self.molecules.check_exclusion(chains || init)?;
         self.observe.validate(self.geometry.shortest_edge()?)?;
         self.output.validate()?;
         if let Some(w) = &self.sweep {

@@ -7,7 +7,8 @@ use dpd_core::bonded::{AngleStyle, BondStyle};
 use dpd_core::ParamError;
 use serde::{Deserialize, Serialize};
 
-/// Keys `[[bond_types]]`, `[[angle_types]]` and `[[molecules]]` (in type-id order each).
+/// Keys `[[bond_types]]`, `[[angle_types]]` and `[[molecules]]` (in type-id order each), and
+/// `exclude_bonded`.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Molecules {
@@ -17,6 +18,11 @@ pub struct Molecules {
     pub angle_types: Option<Vec<AngleType>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub molecules: Option<Vec<ChainSpec>>,
+    /// Leave bonded pairs out of the pair forces, as LAMMPS's `special_bonds lj 0 1 1` with
+    /// pair dpd (default: bonded beads keep their soft repulsion, `special_bonds lj 1 1 1`).
+    /// Needs bonds, from `[[molecules]]` or the `init` data file.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub exclude_bonded: bool,
 }
 
 /// A bond type: `style = "harmonic"`, `E = k (r - r0)^2` (no 1/2, as LAMMPS), or `"fene"`,
@@ -179,6 +185,12 @@ impl AngleType {
 }
 
 impl Molecules {
+    /// `exclude_bonded` only where there are bonds (`bonded`).
+    pub fn check_exclusion(&self, bonded: bool) -> Result<(), ParamError> {
+        let why = "needs bonds: give [[molecules]], or an init data file with Bonds";
+        require("exclude_bonded", true, !self.exclude_bonded || bonded, why)
+    }
+
     /// Whether the scene has chains.
     pub fn any(&self) -> bool {
         self.molecules.as_ref().is_some_and(|m| !m.is_empty())

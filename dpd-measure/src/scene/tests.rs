@@ -324,6 +324,17 @@ fn a_scene_s_chains_build_a_bonded_system() {
         let e = error_of(&text);
         assert!(e.contains(&format!("invalid {key} ")), "{e}");
     }
+    assert!(!sys.excludes_bonded());
+    let excluding = Scene::from_toml(&format!("exclude_bonded = true\n{text}"), "t").unwrap();
+    excluding.validate().unwrap();
+    assert!(excluding.to_toml().contains("\nexclude_bonded = true\n"));
+    let sys = excluding.system(0.05, 3).unwrap();
+    assert!(sys.excludes_bonded());
+    assert_eq!(
+        error_of("exclude_bonded = true\n"),
+        "scene: invalid exclude_bonded = true: needs bonds: give [[molecules]], or an init data \
+         file with Bonds"
+    );
 }
 
 /// A melt's trajectory frames carry its bonds by particle id (GSD `bonds/...`, so that OVITO
