@@ -84,8 +84,12 @@ impl InitSpec {
         let bad = |message: String| ParamError::new("init", self.file.display(), message);
         match self.file.extension().and_then(|e| e.to_str()) {
             Some("data") => {
-                let data = DataFile::read(&self.file).map_err(|e| bad(without_path(e)))?;
-                Ok((data.atoms.len(), data.bounds.map(|[lo, hi]| hi - lo)))
+                // The header alone: the file is read in full when the run starts, and a
+                // second full parse here left ~120 bytes per particle of freed allocations in
+                // the resident set (24 000 beads).
+                let (atoms, bounds) =
+                    DataFile::read_size(&self.file).map_err(|e| bad(without_path(e)))?;
+                Ok((atoms, bounds.map(|[lo, hi]| hi - lo)))
             }
             _ => {
                 let (frame, _) = self.gsd_frame()?;

@@ -10,6 +10,7 @@
 use crate::TrajectoryError;
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
+use std::iter::Peekable;
 use std::path::Path;
 
 /// The columns of the `Atoms` section.
@@ -163,50 +164,31 @@ impl DataFile {
         std::fs::write(path, self.to_text()).map_err(TrajectoryError::io(path))
     }
 
+    /// The atom count and the box bounds of the file at `path`, from its header alone (its
+    /// sections are neither parsed nor checked): what sizes a system before the file is read.
+    pub fn read_size(path: &Path) -> Result<(usize, [[f64; 2]; 3]), TrajectoryError> {
+        let text = std::fs::read_to_string(path).map_err(TrajectoryError::io(path))?;
+        let (title, mut lines) = lines(&text);
+        // The header, and what ends it: a section read here or the end of the file.
+        let header = DataFile::header(title, &mut lines).and_then(|header| {
+            let end = lines.peek().map_or(Ok(""), section_name);
+            end.map(|_| header)
+        });
+        let (file, counts) = header.map_err(|message| TrajectoryError::Format {
+            path: path.to_path_buf(),
+            message,
+        })?;
+        Ok((counts.atoms, file.bounds))
+    }
+
     /// Parse the text of a data file; the error names the line and section.
     pub fn parse(text: &str) -> Result<DataFile, String> {
-        let mut lines = text.lines().enumerate().map(|(k, l)| {
-            let (text, comment) = l.split_once('#').unwrap_or((l, ""));
-            Line {
-                number: k + 1,
-                text: text.trim(),
-                comment: comment.trim(),
-                section: "",
-            }
-        });
-        let title = lines.next().map_or("", |l| l.text).to_string();
-        let mut lines = lines.filter(|l| !l.text.is_empty()).peekable();
-        let mut file = DataFile {
-            title,
-            bounds: [[0.0; 2]; 3],
-            atom_types: 0,
-            bond_types: 0,
-            angle_types: 0,
-            atom_style: AtomStyle::Atomic,
-            masses: Vec::new(),
-            type_labels: None,
-            atoms: Vec::new(),
-            bonds: Vec::new(),
-            angles: Vec::new(),
-            pair_coeffs: Coeffs::default(),
-            bond_coeffs: Coeffs::default(),
-            angle_coeffs: Coeffs::default(),
-        };
-        let mut counts = Header::default();
-        while let Some(line) = lines.next_if(|l| !is_section(l.text)) {
-            counts.read(&line, &mut file)?;
-        }
+        let (title, mut lines) = lines(text);
+        let (mut file, counts) = DataFile::header(title, &mut lines)?;
         file.masses = vec![None; file.atom_types as usize];
         let mut seen = Vec::new();
         while let Some(head) = lines.next() {
-            let name = head.text;
-            if !SECTIONS.contains(&name) {
-                return Err(format!(
-                    "line {}: section `{name}` is not read here (known: {})",
-                    head.number,
-                    SECTIONS.join(", ")
-                ));
-            }
+            let name = section_name(&head)?;
             if seen.contains(&name) {
                 return Err(format!(
                     "line {}: section `{name}` a second time",
@@ -233,6 +215,35 @@ impl DataFile {
         }
         file.check(&counts)?;
         Ok(file)
+    }
+
+    /// The title line and the header (counts, types, box bounds) up to the first section:
+    /// a file with those set and its sections empty, and the section lengths they ask for.
+    fn header<'a>(
+        title: &str,
+        lines: &mut Peekable<impl Iterator<Item = Line<'a>>>,
+    ) -> Result<(DataFile, Header), String> {
+        let mut file = DataFile {
+            title: title.to_string(),
+            bounds: [[0.0; 2]; 3],
+            atom_types: 0,
+            bond_types: 0,
+            angle_types: 0,
+            atom_style: AtomStyle::Atomic,
+            masses: Vec::new(),
+            type_labels: None,
+            atoms: Vec::new(),
+            bonds: Vec::new(),
+            angles: Vec::new(),
+            pair_coeffs: Coeffs::default(),
+            bond_coeffs: Coeffs::default(),
+            angle_coeffs: Coeffs::default(),
+        };
+        let mut counts = Header::default();
+        while let Some(line) = lines.next_if(|l| !is_section(l.text)) {
+            counts.read(&line, &mut file)?;
+        }
+        Ok((file, counts))
     }
 
     /// The text of the file, in the order `write_data` uses; numbers as Rust prints them
@@ -613,6 +624,36 @@ impl Header {
             "Bond Coeffs" => file.bond_types as usize,
             _ => file.angle_types as usize,
         }
+    }
+}
+
+/// The title (the first line) and the other non-blank lines of `text`, numbered from 1,
+/// comments split off.
+fn lines(text: &str) -> (&str, Peekable<impl Iterator<Item = Line<'_>>>) {
+    let mut all = text.lines().enumerate().map(|(k, l)| {
+        let (text, comment) = l.split_once('#').unwrap_or((l, ""));
+        Line {
+            number: k + 1,
+            text: text.trim(),
+            comment: comment.trim(),
+            section: "",
+        }
+    });
+    let title = all.next().map_or("", |l| l.text);
+    (title, all.filter(|l| !l.text.is_empty()).peekable())
+}
+
+/// The name of the section `head` opens, if it is one read here.
+fn section_name<'a>(head: &Line<'a>) -> Result<&'a str, String> {
+    if SECTIONS.contains(&head.text) {
+        Ok(head.text)
+    } else {
+        Err(format!(
+            "line {}: section `{}` is not read here (known: {})",
+            head.number,
+            head.text,
+            SECTIONS.join(", ")
+        ))
     }
 }
 

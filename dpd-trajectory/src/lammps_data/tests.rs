@@ -124,6 +124,27 @@ fn a_written_file_reads_back_the_same() {
     assert_eq!(DataFile::read(&path).unwrap(), f);
 }
 
+/// The size of a file comes from its header alone: the same count and bounds as a full read,
+/// and a header error is reported as by `read`, while the sections are not looked at.
+#[test]
+fn the_size_is_read_from_the_header() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("s.data");
+    std::fs::write(&path, FULL).unwrap();
+    let f = DataFile::read(&path).unwrap();
+    assert_eq!(DataFile::read_size(&path).unwrap(), (3, f.bounds));
+    assert_eq!(f.atoms.len(), 3);
+    std::fs::write(&path, FULL.replace("1 A\n", "1\n")).unwrap();
+    assert!(DataFile::read(&path).is_err());
+    assert_eq!(DataFile::read_size(&path).unwrap(), (3, f.bounds));
+    std::fs::write(&path, FULL.replace("3 atoms", "three atoms")).unwrap();
+    let e = DataFile::read_size(&path).unwrap_err().to_string();
+    assert!(
+        e.contains("line 3: section `three atoms` is not read here"),
+        "{e}"
+    );
+}
+
 #[test]
 fn the_atom_style_follows_the_comment_or_the_column_count() {
     let atomic = "t\n\n2 atoms\n1 atom types\n0 1 xlo xhi\n0 1 ylo yhi\n0 1 zlo zhi\n\n\
