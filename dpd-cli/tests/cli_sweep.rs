@@ -66,6 +66,21 @@ fn sweep_writes_points_and_summary_and_resumes() {
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("out.json")).unwrap())
             .unwrap();
     assert_eq!(after["points"], v["points"]);
+    // A narrower plan counts only its own points as done, and keeps the others.
+    let mut narrower = args;
+    narrower[4] = "aboba";
+    let again = dpd(dir.path(), &narrower);
+    let stderr = String::from_utf8_lossy(&again.stderr);
+    assert!(
+        again.status.success()
+            && stderr.contains("4 points, 4 already in")
+            && stderr.contains("(and 4 other points it keeps)"),
+        "{stderr}"
+    );
+    let kept: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("out.json")).unwrap())
+            .unwrap();
+    assert_eq!(kept["points"].as_array().map(Vec::len), Some(8));
 }
 
 /// The results file `out.json` in `dir`, after checking that `out` succeeded.

@@ -108,13 +108,18 @@ pub fn measure(
     };
     let pending = sweep::pending(scene, &finished);
     let planned = pending.len() + finished.len();
+    // The file may hold points of other schemes or steps: kept, not counted as this plan's.
+    let plan = sweep::plan(scene).len();
+    let done = plan - pending.len();
+    let others = match finished.len() - done {
+        0 => String::new(),
+        k => format!(" (and {k} other points it keeps)"),
+    };
     errln!(
-        "# {} dt from {} to {}; {} points, {} already in {}",
+        "# {} dt from {} to {}; {plan} points, {done} already in {}{others}",
         grid.len(),
         w.dt_min,
         w.dt_max,
-        sweep::plan(scene).len(),
-        finished.len(),
         json.display()
     );
     if let Err(e) = std::fs::create_dir_all(out) {
