@@ -461,6 +461,26 @@ mod tests {
         }
     }
 
+    /// `n` atoms in a cube of side 2 with velocities in [-0.5, 0.5) from a linear congruential
+    /// stream seeded by `seed`, masses 1, 2, 3 in turn, tags `tag(k)`, types 1 and 2 in turn.
+    fn random_scene(n: usize, seed: u64, tag: impl Fn(i32) -> i32) -> Scene {
+        let mut state = seed;
+        let mut next = move || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let x = (0..3 * n).map(|_| 2.0 * next()).collect();
+        Scene {
+            x,
+            v: (0..3 * n).map(|_| next() - 0.5).collect(),
+            inv_mass: (0..n).map(|k| 1.0 / (1.0 + (k % 3) as f64)).collect(),
+            tag: (0..n as i32).map(tag).collect(),
+            types: (0..n).map(|k| 1 + (k % 2) as c_int).collect(),
+        }
+    }
+
     impl Scene {
         fn atoms(&self) -> Atoms<'_> {
             Atoms {
@@ -803,24 +823,10 @@ mod tests {
     #[test]
     fn the_sweep_is_bitwise_the_pair_by_pair_loop() {
         let n: usize = 60;
-        let mut state = 12345u64;
-        let mut next = move || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
-        let x: Vec<f64> = (0..3 * n).map(|_| 2.0 * next()).collect();
-        let v0: Vec<f64> = (0..3 * n).map(|_| next() - 0.5).collect();
-        let inv_mass: Vec<f64> = (0..n).map(|k| 1.0 / (1.0 + (k % 3) as f64)).collect();
-        let tag: Vec<i32> = (0..n as i32).map(|k| 1000 - 7 * k).collect();
-        let types: Vec<c_int> = (0..n).map(|k| 1 + (k % 2) as c_int).collect();
-        let atoms = Atoms {
-            x: &x,
-            inv_mass: &inv_mass,
-            tag: Tags::Small(&tag),
-            types: &types,
-        };
+        let scene = random_scene(n, 12345, |k| 1000 - 7 * k);
+        let (inv_mass, tag, types) = (&scene.inv_mass, &scene.tag, &scene.types);
+        let v0 = scene.v.clone();
+        let atoms = scene.atoms();
         let pairs: Vec<[c_int; 2]> = (0..n as c_int)
             .flat_map(|i| (i + 1..n as c_int).map(move |j| [i, j]))
             .collect();
@@ -890,24 +896,10 @@ mod tests {
     #[test]
     fn a_sweep_over_recorded_pairs_is_bitwise_the_sweep_over_the_list() {
         let n: usize = 60;
-        let mut state = 777u64;
-        let mut next = move || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
-        let x: Vec<f64> = (0..3 * n).map(|_| 2.0 * next()).collect();
-        let v0: Vec<f64> = (0..3 * n).map(|_| next() - 0.5).collect();
-        let inv_mass: Vec<f64> = (0..n).map(|k| 1.0 / (1.0 + (k % 3) as f64)).collect();
-        let tag: Vec<i32> = (0..n as i32).map(|k| 5 + 3 * k).collect();
-        let types: Vec<c_int> = (0..n).map(|k| 1 + (k % 2) as c_int).collect();
-        let atoms = Atoms {
-            x: &x,
-            inv_mass: &inv_mass,
-            tag: Tags::Small(&tag),
-            types: &types,
-        };
+        let scene = random_scene(n, 777, |k| 5 + 3 * k);
+        let (x, types) = (&scene.x, &scene.types);
+        let v0 = scene.v.clone();
+        let atoms = scene.atoms();
         let gamma = [0.0, 0.0, 0.0, 0.0, 4.5, 9.0, 0.0, 9.0, 20.0];
         let rc = [0.0, 0.0, 0.0, 0.0, 1.0, 0.9, 0.0, 0.9, 1.1];
         let k = Kernels::new(1.0, 2.0, 2, &gamma, &rc).unwrap();
@@ -926,8 +918,8 @@ mod tests {
             let status = style.atom(
                 i,
                 &neighbours(i),
-                &x,
-                &types,
+                x,
+                types,
                 &mut f,
                 &mut soft::Tally::default(),
                 Some(&mut record),
