@@ -111,7 +111,7 @@ pub fn measure(
     // The file may hold points of other schemes or steps: kept, not counted as this plan's.
     let plan = sweep::plan(scene).len();
     let done = plan - pending.len();
-    let others = match finished.len() - done {
+    let others = match finished.len().saturating_sub(done) {
         0 => String::new(),
         k => format!(" (and {k} other points it keeps)"),
     };
