@@ -84,13 +84,43 @@ fn lowe_andersen_schemes_match_dyn_scheme_bitwise() {
         (&dpd_scheme!("B(1/2) A B(1/2) L"), "B(1/2) A B(1/2) L"),
         (&dpd_scheme!("BA L< L> AB"), "BA L< L> AB"),
     ] {
-        let (mut sa, mut sb) = (colliding_box(), colliding_box());
-        let dynamic = dynamic(source);
-        for step in 0..200 {
-            sa.advance(generated, 1).unwrap();
-            sb.advance(&dynamic, 1).unwrap();
-            assert!(common::same_bits(&sa, &sb), "{source}: step {}", step + 1);
-        }
+        same_steps(colliding_box, generated, source);
+    }
+}
+
+/// `generated` and `DynScheme` of `source` from two `start()` systems: the same bits (with xi)
+/// after each of 200 steps; returns the first system.
+fn same_steps(start: impl Fn() -> System, generated: &dyn Scheme, source: &str) -> System {
+    let (mut sa, mut sb) = (start(), start());
+    let dynamic = dynamic(source);
+    for step in 0..200 {
+        sa.advance(generated, 1).unwrap();
+        sb.advance(&dynamic, 1).unwrap();
+        assert!(common::same_bits(&sa, &sb), "{source}: step {}", step + 1);
+    }
+    sa
+}
+
+/// PAdL (Oa and Xi) at a thermostat mass of 50, where xi moves by several per cent: the same
+/// bits for positions, momenta and xi.
+#[test]
+fn adaptive_schemes_match_dyn_scheme_bitwise() {
+    let adaptive_box = || {
+        let params = dpd::Params::builder().thermostat_mass(50.0);
+        common::system(500, 3.0, params, DT, SEED)
+    };
+    for (generated, source) in [
+        (
+            &dpd_scheme!("B A Xi(1/2) Oa Xi(1/2) A B") as &dyn Scheme,
+            "B A Xi(1/2) Oa Xi(1/2) A B",
+        ),
+        (
+            &dpd_scheme!("A(1/2) B(1/2) Xi(1/2) Oa Xi(1/2) B(1/2) A(1/2)"),
+            "A(1/2) B(1/2) Xi(1/2) Oa Xi(1/2) B(1/2) A(1/2)",
+        ),
+    ] {
+        let sa = same_steps(adaptive_box, generated, source);
+        assert!((sa.xi() - 1.0).abs() > 1e-3, "{source}: xi = {}", sa.xi());
     }
 }
 

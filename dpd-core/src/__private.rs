@@ -2,7 +2,8 @@
 //! release of the macro, which is version-locked to this crate.
 
 pub use crate::flow::{
-    bbk, collide, drift, full_force, full_force_group, kick, kick_group, ou, trotter,
+    adaptive_ou, bbk, collide, drift, full_force, full_force_group, kick, kick_group, ou, trotter,
+    xi_update,
 };
 pub use crate::scheme::Scheme;
 pub use crate::system::System;

@@ -6,7 +6,7 @@
 //! neighbour-list build (which fix the sweep order and the next rebuild), the name of the
 //! scheme, the topology (bonds and angles by id, from version 8), the Lowe-Andersen collision
 //! rate (from version 9), whether bonded pairs are excluded from the pair forces (from version
-//! 10), and what a scheme carries between steps (the full forces of velocity Verlet, with
+//! 10), PAdL's thermostat mass and adaptive friction factor xi (from version 11), and what a scheme carries between steps (the full forces of velocity Verlet, with
 //! their noise). Pair geometry and conservative forces are not stored: they are pure functions
 //! of the positions and the list, recomputed in the same pair order, hence bitwise equal. A restarted run
 //! therefore continues bit for bit like an uninterrupted one.
@@ -14,8 +14,8 @@
 //! File layout: 8 magic bytes `DPDCHKPT`, format version (u32 LE), payload length (u64 LE),
 //! CRC-32 of the payload (u32 LE), payload (bincode: the fields of `Payload`, then, from
 //! version 8, the optional topology, from version 9 the optional collision rate and from
-//! version 10 the exclusion flag; version 7 to 9 files, without them, still load, excluding
-//! nothing). Writes go to a temporary file in the same
+//! version 10 the exclusion flag, from version 11 the optional thermostat mass and xi; version
+//! 7 to 10 files, without them, still load, excluding nothing, with xi = 1). Writes go to a temporary file in the same
 //! directory, are synced, then renamed over the target, so an interrupted write never destroys
 //! the previous checkpoint.
 
@@ -31,9 +31,10 @@ use std::io::Write;
 use std::path::Path;
 
 const MAGIC: &[u8; 8] = b"DPDCHKPT";
-const VERSION: u32 = 10;
-/// The oldest version read: version 7 is version 10 without the topology, the collision rate
-/// and the exclusion flag, version 8 without the last two, version 9 without the flag.
+const VERSION: u32 = 11;
+/// The oldest version read: version 7 is version 11 without the topology, the collision rate,
+/// the exclusion flag, the thermostat mass and xi; each later version adds the next of them
+/// (version 10 lacks only the thermostat mass and xi).
 const OLDEST: u32 = 7;
 const HEADER: usize = 8 + 4 + 8 + 4;
 
@@ -120,6 +121,8 @@ impl System {
         bincode::serialize_into(&mut data, &self.topology()).map_err(encode)?;
         bincode::serialize_into(&mut data, &self.params().collision_rate()).map_err(encode)?;
         bincode::serialize_into(&mut data, &self.excludes_bonded()).map_err(encode)?;
+        bincode::serialize_into(&mut data, &self.params().thermostat_mass()).map_err(encode)?;
+        bincode::serialize_into(&mut data, &self.xi()).map_err(encode)?;
         let mut bytes = Vec::with_capacity(HEADER + data.len());
         bytes.extend_from_slice(MAGIC);
         bytes.extend_from_slice(&VERSION.to_le_bytes());
@@ -201,12 +204,19 @@ impl System {
         } else {
             false
         };
+        let (thermostat_mass, xi): (Option<f64>, f64) = if version >= 11 {
+            let mass = bincode::deserialize_from(&mut rest).map_err(decode)?;
+            (mass, bincode::deserialize_from(&mut rest).map_err(decode)?)
+        } else {
+            (None, 1.0)
+        };
         let invalid = |source| CheckpointError::Invalid {
             path: name.clone(),
             source,
         };
         let params = ParamsBuilder {
             collision_rate,
+            thermostat_mass,
             ..payload.params.into()
         };
         let params = params.build().map_err(invalid)?;
@@ -231,6 +241,7 @@ impl System {
             builder = builder.topology(t).exclude_bonded(exclude_bonded);
         }
         let mut sys = builder.build().map_err(invalid)?;
+        sys.set_xi(xi).map_err(invalid)?;
         sys.resume(Continuation {
             step: payload.step,
             shear,
@@ -284,22 +295,24 @@ mod tests {
         assert_eq!(back.ids(), sys.ids());
     }
 
-    /// Version 7, 8 and 9 files (version 10 without the topology, the collision rate and the
-    /// exclusion flag that follow the payload, without the last two, or without the flag) load,
-    /// excluding nothing.
+    /// Version 7 to 10 files (version 11 without the topology, the collision rate, the
+    /// exclusion flag, the thermostat mass and xi that follow the payload, or without the
+    /// first of them that their version lacks) load, excluding nothing, with xi = 1.
     #[test]
-    fn version_7_8_and_9_checkpoints_load() {
+    fn version_7_to_10_checkpoints_load() {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("c.chk");
         let sys = system(None);
         sys.save_checkpoint(&path, "ABOBA").unwrap();
         let bytes = std::fs::read(&path).unwrap();
+        let mut tail = vec![0, 0, 0, 0];
+        tail.extend_from_slice(&1f64.to_le_bytes());
         assert_eq!(
-            bytes[bytes.len() - 3..],
-            [0, 0, 0],
-            "bincode's None twice, false"
+            bytes[bytes.len() - 12..],
+            tail,
+            "bincode's None twice, false, None, xi = 1"
         );
-        for (version, dropped) in [(7u32, 3), (8, 2), (9, 1)] {
+        for (version, dropped) in [(7u32, 12), (8, 11), (9, 10), (10, 9)] {
             let data = &bytes[HEADER..bytes.len() - dropped];
             let mut old = MAGIC.to_vec();
             old.extend_from_slice(&version.to_le_bytes());
@@ -313,8 +326,26 @@ mod tests {
                 (sys.positions(), "ABOBA")
             );
             assert!(back.topology().is_none() && back.params().collision_rate().is_none());
-            assert!(!back.excludes_bonded());
+            assert!(!back.excludes_bonded() && back.params().thermostat_mass().is_none());
+            assert_eq!(back.xi(), 1.0);
         }
+    }
+
+    /// PAdL's thermostat mass and adaptive friction factor are kept.
+    #[test]
+    fn the_adaptive_thermostat_is_kept() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("c.chk");
+        let params = Params::builder().thermostat_mass(10.0).build().unwrap();
+        let mut sys = equilibrium_box(params, 200, 3.0, 3)
+            .unwrap()
+            .build()
+            .unwrap();
+        sys.set_xi(0.8125).unwrap();
+        sys.save_checkpoint(&path, "B A Xi(1/2) Oa Xi(1/2) A B")
+            .unwrap();
+        let (back, _) = System::load_checkpoint(&path).unwrap();
+        assert_eq!((back.params(), back.xi()), (sys.params(), 0.8125));
     }
 
     /// The collision rate of Lowe-Andersen schemes is kept.

@@ -3,7 +3,8 @@
 
 use crate::error::{AdvanceError, ParamError};
 use crate::flow::{
-    bbk, collide, drift, full_force, full_force_group, kick, kick_group, ou, trotter,
+    adaptive_ou, bbk, collide, drift, full_force, full_force_group, kick, kick_group, ou, trotter,
+    xi_update,
 };
 use crate::system::System;
 use dpd_ir::{Diagnostic, Flow, ForceGroup, Options, Program, Stage};
@@ -74,7 +75,8 @@ impl System {
     /// Whether `scheme` can run on this system: each force group its program names
     /// (`B[bond]`) must be one the system has ([`System::force_groups`]), and each group the
     /// system has must be applied by some stage (a scheme of `B[pair]` and `T` alone leaves the
-    /// bonded forces out); a program with L needs a collision rate ([`crate::Params::collision_rate`]).
+    /// bonded forces out); a program with L needs a collision rate ([`crate::Params::collision_rate`]),
+    /// one with Xi a thermostat mass ([`crate::Params::thermostat_mass`]).
     /// Hand-written schemes, without a program, are not checked.
     pub fn check_scheme<S: Scheme + ?Sized>(&self, scheme: &S) -> Result<(), ParamError> {
         let Some(program) = scheme.program() else {
@@ -96,17 +98,26 @@ impl System {
                 group_forces(g)
             ));
         }
-        if program.stages.iter().any(|s| s.flow == Flow::L)
-            && self.params().collision_rate().is_none()
-        {
-            return Err(ParamError::new(
+        // Letters that read a parameter only they use: (letter, parameter set, field, why).
+        let needs = [
+            (
+                Flow::L,
+                self.params().collision_rate().is_some(),
                 "collision_rate",
-                "unset",
-                format!(
-                    "scheme {} has L (Lowe-Andersen collisions), which needs the collision frequency Gamma: set collision_rate to a finite value > 0 (per unit time)",
-                    scheme.name()
-                ),
-            ));
+                "L (Lowe-Andersen collisions), which needs the collision frequency Gamma: set collision_rate to a finite value > 0 (per unit time)",
+            ),
+            (
+                Flow::Xi,
+                self.params().thermostat_mass().is_some(),
+                "thermostat_mass",
+                "Xi (the adaptive friction of PAdL), which needs the thermostat mass mu: set thermostat_mass to a finite value > 0 (energy units; xi fluctuates around 1 with variance kbt / mu)",
+            ),
+        ];
+        for (flow, set, field, why) in needs {
+            if !set && program.stages.iter().any(|s| s.flow == flow) {
+                let message = format!("scheme {} has {why}", scheme.name());
+                return Err(ParamError::new(field, "unset", message));
+            }
         }
         Ok(())
     }
@@ -135,6 +146,8 @@ pub fn apply_stage(sys: &mut System, stage: &Stage) {
         (Flow::F, None) => full_force(sys, h, stage.stream),
         (Flow::F, Some(group)) => full_force_group(sys, h, stage.stream, group),
         (Flow::L, _) => collide(sys, h, stage.stream, stage.order),
+        (Flow::Oa, _) => adaptive_ou(sys, h, stage.stream, stage.order),
+        (Flow::Xi, _) => xi_update(sys, h),
     }
 }
 

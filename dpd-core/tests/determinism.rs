@@ -55,6 +55,19 @@ fn trajectory_is_identical_for_any_thread_count() {
     let colliding = || common::system(3000, 3.0, Params::builder().collision_rate(5.0), 0.04, 17);
     let lowe = compiled("A(1/2) B(1/2) L B(1/2) A(1/2)");
     same_on_any_thread_count(&lowe, &[1, 2, 3, 5], colliding, 40);
+    // PAdL: xi's feedback is a sum over the pairs, added in the engine's fixed order.
+    // mu grows with N: at mu = 5 this box blew up (xi's oscillation outran the step).
+    let adaptive = || {
+        common::system(
+            3000,
+            3.0,
+            Params::builder().thermostat_mass(200.0),
+            0.04,
+            17,
+        )
+    };
+    let padl = compiled("B A Xi(1/2) Oa Xi(1/2) A B");
+    same_on_any_thread_count(&padl, &[1, 2, 3, 5], adaptive, 40);
 }
 
 /// Above 16 384 particles the per-particle loops (binning, permutation, drifts, kicks, the

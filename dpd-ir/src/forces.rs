@@ -81,7 +81,7 @@ pub fn applies(flow: Flow, group: Option<ForceGroup>, g: ForceGroup) -> bool {
     match flow {
         Flow::B | Flow::F => group.is_none_or(|named| named == g),
         Flow::T => g == ForceGroup::Pair,
-        Flow::A | Flow::O | Flow::Bbk | Flow::L => false,
+        Flow::A | Flow::O | Flow::Bbk | Flow::L | Flow::Oa | Flow::Xi => false,
     }
 }
 

@@ -32,11 +32,19 @@ pub enum Flow {
     /// `1 - exp(-Gamma h)`, draws its relative normal velocity afresh from the Maxwellian of
     /// its reduced mass. Exact in distribution for collisions at rate Gamma; needs `h > 0`.
     L,
+    /// Adaptive pairwise Ornstein-Uhlenbeck sweep (PAdL): O with each pair's friction
+    /// `xi gamma_ij` scaled by the system's adaptive friction factor `xi`, its noise
+    /// `sigma_ij` fixed; exact in distribution per pair at fixed `xi`. Needs `h > 0`.
+    Oa,
+    /// Update of the adaptive friction factor of PAdL, `xi += h G / mu` with
+    /// `G = sum over pairs gamma_ij w_D (u_ij^2 - kbt (1/m_i + 1/m_j))`, exact at fixed
+    /// positions and momenta (which it does not change).
+    Xi,
 }
 
 impl Flow {
     /// Every flow, in the order of the enum.
-    pub const ALL: [Flow; 7] = [
+    pub const ALL: [Flow; 9] = [
         Flow::A,
         Flow::B,
         Flow::O,
@@ -44,16 +52,21 @@ impl Flow {
         Flow::T,
         Flow::F,
         Flow::L,
+        Flow::Oa,
+        Flow::Xi,
     ];
 
     /// True for the flows that loop over pairs drawing random numbers.
     pub fn is_stochastic(self) -> bool {
-        matches!(self, Flow::O | Flow::Bbk | Flow::T | Flow::F | Flow::L)
+        matches!(
+            self,
+            Flow::O | Flow::Bbk | Flow::T | Flow::F | Flow::L | Flow::Oa
+        )
     }
 
     /// True for the flows that visit pairs successively, so that their order matters.
     pub fn is_successive_sweep(self) -> bool {
-        matches!(self, Flow::O | Flow::Bbk | Flow::T | Flow::L)
+        matches!(self, Flow::O | Flow::Bbk | Flow::T | Flow::L | Flow::Oa)
     }
 
     /// True for the flows that change positions.

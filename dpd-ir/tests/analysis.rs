@@ -164,6 +164,22 @@ fn collisions_have_the_analysis_of_the_exact_sweep() {
     assert_eq!(invariant(&abo), 1, "{abo}");
 }
 
+/// The adaptive thermostat's friction factor xi is a variable of its own, outside the A, B
+/// and O generators: the invariant-measure criterion does not apply (measure it), while
+/// consistency and the Hamiltonian part are analysed as for O.
+#[test]
+fn the_adaptive_thermostat_is_outside_the_criterion() {
+    let a = analyse(
+        &dpd_ir::lang::compile("B A Xi(1/2) Oa Xi(1/2) A B")
+            .unwrap()
+            .unmerged_stages,
+    );
+    assert!(a.consistent, "{a}");
+    assert_eq!(a.deterministic_order, 2);
+    assert_eq!(a.invariant_measure_order, None);
+    assert!(a.to_string().contains("Oa and Xi"), "{a}");
+}
+
 #[test]
 fn dpd_s1_is_second_order_because_of_bbk() {
     let a = analyse(&seq(&[

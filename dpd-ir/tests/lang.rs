@@ -304,7 +304,7 @@ fn errors_point_at_their_source() {
     assert!(err(" \n ")[0].message.contains("empty scheme"));
     assert_eq!(
         err("ABQ")[0].message,
-        "unknown sub-flow 'Q' at position 3; expected one of A, B, O, Ob, T, F, L, S or a defined name"
+        "unknown sub-flow 'Q' at position 3; expected one of A, B, O, Ob, T, F, L, Oa, Xi, S or a defined name"
     );
     assert_eq!(one_err("ABQ", "unknown sub-flow"), "Q");
     assert_eq!(one_err("AB x", "unknown sub-flow 'x'"), "x");
@@ -346,6 +346,32 @@ fn errors_point_at_their_source() {
     let lowe = ok("B A B L");
     assert_eq!(lowe.stages[3].flow, Flow::L);
     assert_eq!(lowe.to_string(), "B(1/2) A(1) B(1/2) L(1)");
+    // The adaptive thermostat: Oa and Xi together, alone, the Xi steps summing to one.
+    let padl = ok("B A Xi(1/2) Oa Xi(1/2) A B");
+    assert_eq!(
+        padl.stages.iter().map(|s| s.flow).collect::<Vec<_>>(),
+        [
+            Flow::B,
+            Flow::A,
+            Flow::Xi,
+            Flow::Oa,
+            Flow::Xi,
+            Flow::A,
+            Flow::B
+        ]
+    );
+    assert_eq!(one_err("BAOaAB", "Oa needs an Xi stage"), "Oa");
+    assert_eq!(one_err("BAOAB Xi", "Xi needs an Oa stage"), "Xi");
+    assert_eq!(
+        one_err(
+            "B A Xi(1/2) Oa(1/2) O(1/2) Xi(1/2) A B",
+            "cannot be combined"
+        ),
+        "Oa(1/2)"
+    );
+    assert_eq!(one_err("B A Xi(1/2) Oa A B", "Xi coefficients"), "Xi(1/2)");
+    let e = compile_with("B A Xi Oa(-1) A B", &options).unwrap_err();
+    assert!(e[0].message.contains("Oa is a stochastic sweep"), "{e:?}");
     let e = compile_with("A B(1e400) O", &options).unwrap_err();
     assert!(e[0].message.contains("non-finite"), "{e:?}");
     assert_eq!(one_err("A B(2) O", "B coefficients"), "B(2)");

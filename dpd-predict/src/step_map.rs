@@ -62,6 +62,14 @@ pub enum StepMapError {
          with Gaussian noise"
     )]
     Collisions(String),
+    /// Oa and Xi: the friction factor xi is a state variable that multiplies the momenta in
+    /// Oa and is driven by their squares in Xi, so the step is not linear.
+    #[error(
+        "{0} has Oa and Xi (the adaptive thermostat, PAdL), which the predictor does not cover: \
+         the friction factor xi multiplies the momenta and is driven by their squares, so the \
+         step is not a linear map with Gaussian noise"
+    )]
+    Adaptive(String),
 }
 
 impl StepMap {
@@ -172,6 +180,7 @@ impl StepMap {
                     )
                 }
                 Flow::L => return Err(StepMapError::Collisions(program.source.clone())),
+                Flow::Oa | Flow::Xi => return Err(StepMapError::Adaptive(program.source.clone())),
                 Flow::F => {
                     if !valid {
                         cache_at = ForcePoint {

@@ -48,6 +48,17 @@ fn collisions_are_refused_by_name() {
     );
 }
 
+/// The adaptive thermostat's step is not linear: the predictor refuses it by name.
+#[test]
+fn the_adaptive_thermostat_is_refused_by_name() {
+    let mode = Mode {
+        omega2: 100.0,
+        gamma: 4.5,
+    };
+    let e = StepMap::new(&program("B A Xi(1/2) Oa Xi(1/2) A B"), mode, 0.05, 1.0).unwrap_err();
+    assert!(e.to_string().contains("Oa and Xi (the adaptive"), "{e}");
+}
+
 /// OBABO (velocity Verlet between two half OU steps) samples p exactly and x with variance
 /// 1 / (omega^2 (1 - (omega h / 2)^2)).
 #[test]

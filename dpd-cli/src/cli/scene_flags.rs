@@ -55,6 +55,10 @@ pub struct SceneFlags {
     #[arg(long, value_name = "GAMMA", allow_negative_numbers = true)]
     #[serde(skip_serializing_if = "Option::is_none")]
     pub collision_rate: Option<f64>,
+    /// Mass mu of the adaptive friction factor xi, energy units (schemes with Oa and Xi)
+    #[arg(long, value_name = "MU", allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub thermostat_mass: Option<f64>,
     /// Seed of the first run
     #[arg(long, allow_negative_numbers = true)]
     #[serde(skip_serializing_if = "Option::is_none")]

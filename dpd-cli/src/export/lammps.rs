@@ -82,8 +82,8 @@ pub struct Exported {
 }
 
 /// The program of a registry name or scheme string (its kicks joined by [`joined_kicks`]), or
-/// why it cannot be exported: unknown (the registry's message), hand-written, with an L stage,
-/// or inconsistent without `allow_inconsistent`. Every other letter and force group runs in the
+/// why it cannot be exported: unknown (the registry's message), hand-written, with an L, Oa or
+/// Xi stage, or inconsistent without `allow_inconsistent`. Every other letter and force group runs in the
 /// plugin (T only with `pair_style dpd/soft`, `B[bond]` only with bonded styles, which the fix
 /// checks).
 pub fn resolve(name: &str, allow_inconsistent: bool) -> Result<Exported, String> {
@@ -121,6 +121,17 @@ pub fn resolve(name: &str, allow_inconsistent: bool) -> Result<Exported, String>
             "scheme '{name}' = {program} has L (Lowe-Andersen collisions), which the LAMMPS \
              plugin does not run: its kernels have no collision sweep (export a scheme of A, B, \
              O, Ob, T and F)"
+        ));
+    }
+    if program
+        .stages
+        .iter()
+        .any(|s| matches!(s.flow, Flow::Oa | Flow::Xi))
+    {
+        return Err(format!(
+            "scheme '{name}' = {program} has Oa and Xi (the adaptive thermostat, PAdL), which \
+             the LAMMPS plugin does not run: its kernels have no adaptive friction xi (export a \
+             scheme of A, B, O, Ob, T and F)"
         ));
     }
     let program = joined_kicks(program);
@@ -211,7 +222,8 @@ fn c_string(text: &str) -> String {
     out
 }
 
-/// The C++ enumerator of a flow (schemes.h, which has none for L: [`resolve`] refuses it).
+/// The C++ enumerator of a flow (schemes.h, which has none for L, Oa and Xi: [`resolve`]
+/// refuses them).
 fn flow_name(flow: Flow) -> &'static str {
     match flow {
         Flow::A => "FLOW_A",
@@ -221,6 +233,8 @@ fn flow_name(flow: Flow) -> &'static str {
         Flow::T => "FLOW_T",
         Flow::F => "FLOW_F",
         Flow::L => "FLOW_L",
+        Flow::Oa => "FLOW_OA",
+        Flow::Xi => "FLOW_XI",
     }
 }
 
@@ -331,6 +345,11 @@ mod tests {
     fn refusals_say_why() {
         let lowe = resolve("B A B L", false).unwrap_err();
         assert!(lowe.contains("L (Lowe-Andersen collisions)"), "{lowe}");
+        let padl = resolve("B A Xi(1/2) Oa Xi(1/2) A B", false).unwrap_err();
+        assert!(
+            padl.contains("Oa and Xi (the adaptive thermostat"),
+            "{padl}"
+        );
         let unknown = resolve("abobq", false).unwrap_err();
         assert!(unknown.contains("unknown scheme 'abobq'"), "{unknown}");
         let hand = resolve("setd", false).unwrap_err();

@@ -12,8 +12,10 @@
 //! | F | [`full_force`] | `p_i += h F_i` with the full DPD force (explicit) |
 //! | F[pair] | [`full_force_group`] | the same with the pair forces only (explicit) |
 //! | L | [`collide`] | Lowe-Andersen pairwise collisions, exact in distribution |
+//! | Oa | [`adaptive_ou`] | O at friction `xi gamma_ij`, noise fixed (PAdL), exact per pair |
+//! | Xi | [`xi_update`] | PAdL's friction factor `xi` from the pairs' kinetic excess (exact) |
 //!
-//! The pairwise sweeps (O, O-BBK, T, L) visit the interacting pairs successively in the sweep
+//! The pairwise sweeps (O, O-BBK, T, L, Oa) visit the interacting pairs successively in the sweep
 //! order documented in [`crate::neighbour`] for [`SweepOrder::Forward`], and in exactly the
 //! reverse order for [`SweepOrder::Reverse`]; each pair sees the momenta already updated by
 //! earlier pairs and draws one standard normal (L: a uniform, then a normal if the pair
@@ -31,12 +33,14 @@
 //! exponential-time-differencing velocity update of SETD and MSETD (algorithms.md section 5),
 //! for the hand-written schemes of `dpd-schemes`.
 
+mod adaptive;
 mod drift;
 mod expm1;
 mod exponential;
 mod kick;
 mod pair_sweep;
 
+pub use adaptive::{adaptive_ou, adaptive_ou_update, xi_update};
 pub use drift::drift;
 pub use exponential::{exponential_velocity, EtdNoise};
 pub use kick::{full_force, full_force_group, kick, kick_group};

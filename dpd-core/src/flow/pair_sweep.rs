@@ -38,7 +38,7 @@ pub struct Change {
 /// each pair's impulse, `du/mu` less the conservative impulse, is added as a virial. The shear
 /// and recording switches are resolved here, once per sweep, not per pair.
 #[inline(always)]
-fn sweep(sys: &mut System, stream: u8, order: SweepOrder, changes: impl Changes) {
+pub(super) fn sweep(sys: &mut System, stream: u8, order: SweepOrder, changes: impl Changes) {
     sweep_drawing(
         sys,
         stream,
@@ -90,7 +90,7 @@ fn sweep_drawing(
 }
 
 /// How a flow computes the [`Change`]s of a run ([`sweep`]).
-trait Changes: Fn(Span, &[f64], &mut Vec<Change>) + Sync + Copy {}
+pub(super) trait Changes: Fn(Span, &[f64], &mut Vec<Change>) + Sync + Copy {}
 impl<F: Fn(Span, &[f64], &mut Vec<Change>) + Sync + Copy> Changes for F {}
 
 /// [`Changes`] that read the sweep's [`Noise`] ([`sweep_drawing`]).
@@ -141,7 +141,7 @@ fn sweep_with<const SHIFTED: bool, V: Virial>(
 
 /// `(slope, offset) / mu` as a [`Change`] holds them.
 #[inline(always)]
-fn per_mass<L: Lanes>(slope: L, offset: L, mu: L) -> (L, L) {
+pub(super) fn per_mass<L: Lanes>(slope: L, offset: L, mu: L) -> (L, L) {
     let reduced = mu.splat(1.0) / mu;
     (slope * reduced, offset * reduced)
 }
@@ -421,7 +421,7 @@ pub fn collision_update(p: f64, kbt: f64, mu: f64, rng: &mut PairRng) -> Change 
 /// The [`Changes`] of a flow that computes the change of each pair on its own,
 /// `change(ends, r)` for normal `r`.
 #[inline(always)]
-fn pair_by_pair(change: impl Fn(Ends, f64) -> Change + Sync + Copy) -> impl Changes {
+pub(super) fn pair_by_pair(change: impl Fn(Ends, f64) -> Change + Sync + Copy) -> impl Changes {
     #[inline(always)]
     move |span: Span, z: &[f64], out: &mut Vec<Change>| {
         out.extend(span.iter().zip(z).map(|(ends, &r)| change(ends, r)));

@@ -23,6 +23,9 @@ use serde::{Deserialize, Serialize};
 /// - `s`: weight exponent, `w_D = (1 - r/r_c)^s`, `w_R = (1 - r/r_c)^(s/2)` (finite, > 0).
 /// - `collision_rate`: the Lowe-Andersen collision frequency Gamma of every pair within `rc`
 ///   (per unit time, finite, > 0), for schemes with an L stage; unset otherwise.
+/// - `thermostat_mass`: the mass `mu` of PAdL's adaptive friction factor `xi` (an energy, in
+///   the units of `kbt`; finite, > 0), for schemes with Oa and Xi: at equilibrium `xi` is
+///   Gaussian around 1 with variance `kbt / mu`. Unset otherwise.
 ///
 /// A matrix whose entries are all equal (for the cut-offs: all equal to `rc`) is stored as one
 /// value, so that a system whose pairs share a coefficient runs the loops of one.
@@ -43,6 +46,7 @@ pub struct Params {
     rc_ij: Vec<f64>,
     s: f64,
     collision_rate: Option<f64>,
+    thermostat_mass: Option<f64>,
 }
 
 /// Unvalidated parameters; [`ParamsBuilder::build`] checks them. Defaults are the standard
@@ -72,6 +76,10 @@ pub struct ParamsBuilder {
     /// store it after the topology (`crate::checkpoint`).
     #[serde(skip)]
     pub collision_rate: Option<f64>,
+    /// The mass `mu` of PAdL's friction factor (energy units), for schemes with Oa and Xi;
+    /// stored by checkpoints after the collision rate, as that is.
+    #[serde(skip)]
+    pub thermostat_mass: Option<f64>,
 }
 
 impl Default for ParamsBuilder {
@@ -85,6 +93,7 @@ impl Default for ParamsBuilder {
             rc_matrix: None,
             weight_exponent: 2.0,
             collision_rate: None,
+            thermostat_mass: None,
         }
     }
 }
@@ -130,6 +139,11 @@ impl ParamsBuilder {
         self.collision_rate = Some(rate);
         self
     }
+    /// The mass `mu` of PAdL's adaptive friction factor, in energy units.
+    pub fn thermostat_mass(mut self, mu: f64) -> Self {
+        self.thermostat_mass = Some(mu);
+        self
+    }
 
     /// Validate every field; the first invalid one is reported.
     pub fn build(self) -> Result<Params, ParamError> {
@@ -152,6 +166,9 @@ impl ParamsBuilder {
         let s = positive("weight_exponent", self.weight_exponent)?;
         let collision_rate = (self.collision_rate)
             .map(|g| positive("collision_rate", g))
+            .transpose()?;
+        let thermostat_mass = (self.thermostat_mass)
+            .map(|mu| positive("thermostat_mass", mu))
             .transpose()?;
         let gamma_ij = match &self.gamma_matrix {
             Some(rows) => symmetric("gamma_matrix", rows, types, at_least_zero)?,
@@ -199,6 +216,7 @@ impl ParamsBuilder {
             rc_ij: differ(rc_ij, rc),
             s,
             collision_rate,
+            thermostat_mass,
         })
     }
 }
@@ -292,6 +310,10 @@ impl Params {
     pub fn collision_rate(&self) -> Option<f64> {
         self.collision_rate
     }
+    /// The mass `mu` of PAdL's adaptive friction factor (energy units), if set.
+    pub fn thermostat_mass(&self) -> Option<f64> {
+        self.thermostat_mass
+    }
 
     /// `w_R(r) = (1 - r/r_c)^(s/2)` for `r < r_c`, given `w = 1 - r/r_c`.
     #[inline(always)]
@@ -326,6 +348,7 @@ impl From<Params> for ParamsBuilder {
             rc_matrix: matrix(&p.rc_ij),
             weight_exponent: p.s,
             collision_rate: p.collision_rate,
+            thermostat_mass: p.thermostat_mass,
         }
     }
 }
@@ -352,6 +375,12 @@ mod tests {
             (Params::builder().weight_exponent(0.0), "weight_exponent"),
             (Params::builder().collision_rate(0.0), "collision_rate"),
             (Params::builder().collision_rate(f64::NAN), "collision_rate"),
+            (Params::builder().thermostat_mass(-1.0), "thermostat_mass"),
+            (Params::builder().thermostat_mass(0.0), "thermostat_mass"),
+            (
+                Params::builder().thermostat_mass(f64::NAN),
+                "thermostat_mass",
+            ),
             (Params::builder().a(f64::NAN), "a[0][0]"),
             (
                 Params::builder().a_matrix(vec![vec![1.0, 2.0], vec![3.0, 1.0]]),

@@ -282,6 +282,7 @@ impl SystemBuilder {
             full_virial: None,
             impulses: None,
             heat: None,
+            xi: 1.0,
             counters: Counters::default(),
             travel: 0.0,
             drift_bound: 0.0,

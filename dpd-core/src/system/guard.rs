@@ -22,6 +22,7 @@ pub(crate) struct Backup {
     shear: Option<LeesEdwards>,
     impulses: Option<ImpulseVirial>,
     heat: Option<f64>,
+    xi: f64,
     travel: f64,
 }
 
@@ -64,6 +65,7 @@ impl System {
         backup.shear = self.shear;
         backup.impulses = self.impulses;
         backup.heat = self.heat;
+        backup.xi = self.xi;
         backup.travel = self.travel;
         self.drift_bound = 0.0;
         self.overstretch = None;
@@ -100,6 +102,7 @@ impl System {
                 self.shear = backup.shear;
                 self.impulses = backup.impulses;
                 self.heat = backup.heat;
+                self.xi = backup.xi;
                 self.travel = backup.travel;
                 Err(BlowUp {
                     step: self.step,

@@ -100,6 +100,9 @@ pub struct System {
     /// energy changes of the O and O-BBK sweeps (`None`: not recording, and the sweeps do not
     /// pay for it; see [`crate::observe::EnergyBalance`]).
     heat: Option<f64>,
+    /// PAdL's adaptive friction factor: Oa sweeps with friction `xi gamma_ij`, Xi moves it
+    /// (module `crate::flow`). Dimensionless; 1 at construction, where Oa is O.
+    xi: f64,
     counters: Counters,
     /// Largest single-particle drift length summed over the drifts since the neighbour list
     /// last checked the positions (length units; NaN once a drift length was NaN).
@@ -201,6 +204,18 @@ impl System {
         }
         self.dt = dt;
         self.full_at = Stamp::default();
+        Ok(())
+    }
+    /// PAdL's adaptive friction factor `xi` (dimensionless, 1 until an Xi stage moves it).
+    pub fn xi(&self) -> f64 {
+        self.xi
+    }
+    /// Set the adaptive friction factor (a restart, or a chosen start); must be finite.
+    pub fn set_xi(&mut self, xi: f64) -> Result<(), ParamError> {
+        if !xi.is_finite() {
+            return Err(ParamError::new("xi", xi, "must be finite"));
+        }
+        self.xi = xi;
         Ok(())
     }
     /// Key of the pair random numbers.

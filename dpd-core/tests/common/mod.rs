@@ -242,7 +242,7 @@ pub fn same_bits(a: &System, b: &System) -> bool {
             .flat_map(|v| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>())
             .collect()
     };
-    a.ids() == b.ids() && bits(a) == bits(b)
+    a.ids() == b.ids() && bits(a) == bits(b) && a.xi().to_bits() == b.xi().to_bits()
 }
 
 /// The blow-up `outcome` of an advance reports; panics on anything else.

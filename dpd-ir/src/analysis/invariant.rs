@@ -181,7 +181,7 @@ impl Letters {
 }
 
 /// The factors of the step in adjoint order (last applied leftmost), each the exponent of one
-/// exponential. `None` if a stage is F.
+/// exponential. `None` if a stage is F, Oa or Xi.
 fn adjoint_factors<S: Scalar>(
     stages: &[Stage],
     coeffs: &[S],
@@ -211,7 +211,9 @@ fn adjoint_factors<S: Scalar>(
                     .chain([(letters.o(k), c.clone())])
                     .collect()
             })),
-            Flow::F => return None,
+            // F is not a splitting of exact flows; Oa and Xi move the adaptive friction
+            // factor xi, a variable the A, B and O generators do not describe.
+            Flow::F | Flow::Oa | Flow::Xi => return None,
         }
     }
     Some(merge_single_letters(factors))
@@ -234,7 +236,8 @@ fn merge_single_letters<S: Scalar>(factors: Vec<Vec<(Letter, S)>>) -> Vec<Vec<(L
     merged
 }
 
-/// The criterion for `stages`, checking `L_0 ... L_max_order`. `None` for F-based schemes.
+/// The criterion for `stages`, checking `L_0 ... L_max_order`. `None` for F-based and
+/// adaptive (Oa, Xi) schemes.
 pub(crate) fn invariant_measure_bound<S: Scalar>(
     stages: &[Stage],
     coeffs: &[S],
@@ -285,7 +288,7 @@ pub(crate) fn invariant_measure_bound<S: Scalar>(
 }
 
 /// The reduced coefficients of `L_0 ... L_(order-1)` (every word of degree 1 to `order`), all
-/// zero iff the bound is at least `order`. `None` for F-based schemes.
+/// zero iff the bound is at least `order`. `None` for F-based and adaptive schemes.
 pub(crate) fn invariant_residuals(
     stages: &[Stage],
     coeffs: &[f64],

@@ -43,7 +43,7 @@ pub const GROUPS: [Group; 2] = [
 
 /// Every sub-flow letter. Spellings start with an uppercase letter followed by lowercase
 /// letters only, so that `ObBAB` reads as `Ob B A B`.
-pub const LETTERS: [Letter; 7] = [
+pub const LETTERS: [Letter; 9] = [
     Letter {
         spelling: "A",
         flow: Flow::A,
@@ -86,6 +86,18 @@ pub const LETTERS: [Letter; 7] = [
         meaning: "Lowe-Andersen pairwise collisions at rate Gamma, exact in distribution",
         groups: &[],
     },
+    Letter {
+        spelling: "Oa",
+        flow: Flow::Oa,
+        meaning: "adaptive pairwise Ornstein-Uhlenbeck sweep (PAdL): friction xi gamma_ij, noise sigma_ij fixed",
+        groups: &[],
+    },
+    Letter {
+        spelling: "Xi",
+        flow: Flow::Xi,
+        meaning: "PAdL's friction factor xi += h/mu sum gamma_ij w_D (u_ij^2 - kbt (1/m_i + 1/m_j))",
+        groups: &[],
+    },
 ];
 
 /// The letter spelled `spelling`, if any.
@@ -123,7 +135,7 @@ pub fn group_spellings() -> String {
         .join(", ")
 }
 
-/// "A, B, O, Ob, T, F, L": the letters, for messages.
+/// "A, B, O, Ob, T, F, L, Oa, Xi": the letters, for messages.
 pub fn spellings() -> String {
     LETTERS
         .iter()
@@ -175,7 +187,7 @@ mod tests {
             assert_eq!(letter(l.spelling), Some(&l));
             assert_eq!(spelling(l.flow), l.spelling);
         }
-        assert_eq!(spellings(), "A, B, O, Ob, T, F, L");
+        assert_eq!(spellings(), "A, B, O, Ob, T, F, L, Oa, Xi");
         for g in GROUPS {
             assert_eq!(group(g.spelling), Some(&g));
             assert_eq!(group_spelling(g.group), g.spelling);

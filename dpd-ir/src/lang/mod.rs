@@ -19,6 +19,8 @@
 //! | `T` | pairwise conservative + Ornstein-Uhlenbeck sweep, exact per pair |
 //! | `F` | explicit full-force kick p += h (F^C + F^D + F^R), all forces or F[pair] |
 //! | `L` | Lowe-Andersen pairwise collisions at rate Gamma, exact in distribution |
+//! | `Oa` | adaptive pairwise Ornstein-Uhlenbeck sweep (PAdL): friction xi gamma_ij, noise sigma_ij fixed |
+//! | `Xi` | PAdL's friction factor xi += h/mu sum gamma_ij w_D (u_ij^2 - kbt (1/m_i + 1/m_j)) |
 //!
 //! Names of sub-flows and sub-schemes start with an uppercase letter and continue with
 //! lowercase letters, digits or `_`, so an uppercase letter always starts a new name:

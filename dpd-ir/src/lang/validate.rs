@@ -27,6 +27,7 @@ pub fn validate(apps: &[Application], len: usize, options: &Options) -> Vec<Diag
     errors.extend(has_drift(apps, &whole));
     errors.extend(has_conservative_force(apps, &whole));
     errors.extend(one_thermostat(apps));
+    errors.extend(adaptive_pair(apps));
     if !options.allow_inconsistent {
         errors.extend(consistent(apps));
     }
@@ -103,13 +104,46 @@ fn one_thermostat(apps: &[Application]) -> Option<Diagnostic> {
     ))
 }
 
+/// The adaptive thermostat (PAdL) is the pair Oa (friction xi gamma_ij) and Xi (the update of
+/// xi): Oa without Xi is DPD at a frozen friction, Xi without Oa a variable nothing reads; and
+/// with O, Ob, T, F or L as well the step would approximate two thermostats at once.
+fn adaptive_pair(apps: &[Application]) -> Option<Diagnostic> {
+    let find = |flow: Flow| apps.iter().find(|a| a.flow == flow);
+    let (oa, xi) = (find(Flow::Oa), find(Flow::Xi));
+    let other = apps
+        .iter()
+        .find(|a| a.flow.is_stochastic() && a.flow != Flow::Oa);
+    let (message, at) = match (oa, xi, other) {
+        (None, None, _) => return None,
+        (Some(oa), _, Some(other)) => (
+            format!(
+                "Oa (the adaptive pairwise thermostat) cannot be combined with the pairwise thermostat of {}: a scheme thermostats with Oa and Xi alone",
+                spelling(other.flow)
+            ),
+            oa,
+        ),
+        (Some(oa), None, _) => (
+            "Oa needs an Xi stage: Oa's friction xi gamma_ij adapts only through the updates of xi by Xi (PAdL: e.g. B A Xi(1/2) Oa Xi(1/2) A B)".to_string(),
+            oa,
+        ),
+        (None, Some(xi), _) => (
+            "Xi needs an Oa stage: xi scales the friction of the adaptive sweep Oa, which no other letter reads".to_string(),
+            xi,
+        ),
+        (Some(_), Some(_), None) => return None,
+    };
+    Some(Diagnostic::new(message, at.span.clone()))
+}
+
 /// A generator of the DPD dynamics (algorithms.md section 4): the drift, a kick (all forces,
-/// or one force group in a scheme that names groups) and the thermostat.
+/// or one force group in a scheme that names groups), the thermostat, and in adaptive schemes
+/// the friction variable's update.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Generator {
     A,
     Kick(Kick),
     O,
+    Xi,
 }
 
 impl Generator {
@@ -119,6 +153,7 @@ impl Generator {
             Generator::A => a.flow == Flow::A,
             Generator::Kick(k) => k.advanced_by(a.flow, a.group),
             Generator::O => a.flow.is_stochastic(),
+            Generator::Xi => a.flow == Flow::Xi,
         }
     }
 
@@ -127,7 +162,8 @@ impl Generator {
         match self {
             Generator::A => "A coefficients (A stages)".to_string(),
             Generator::Kick(k) => format!("{k} coefficients ({} stages)", k.carriers()),
-            Generator::O => "O coefficients (O, Ob, T, F and L stages)".to_string(),
+            Generator::O => "O coefficients (O, Ob, T, F, L and Oa stages)".to_string(),
+            Generator::Xi => "Xi coefficients (Xi stages)".to_string(),
         }
     }
 }
@@ -141,7 +177,7 @@ fn consistent(apps: &[Application]) -> Vec<Diagnostic> {
     let kicks = kicks(apps.iter().map(|a| (a.flow, a.group)));
     let generators = std::iter::once(Generator::A)
         .chain(kicks.into_iter().map(Generator::Kick))
-        .chain([Generator::O]);
+        .chain([Generator::O, Generator::Xi]);
     for g in generators {
         let of_g: Vec<&Application> = apps.iter().filter(|a| g.advanced_by(a)).collect();
         let (Some(first), Some(last)) = (of_g.first(), of_g.last()) else {

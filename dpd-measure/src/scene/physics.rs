@@ -6,8 +6,8 @@ use dpd_core::params::ParamsBuilder;
 use dpd_core::{ParamError, Params};
 use serde::{Deserialize, Serialize};
 
-/// Keys `a`, `gamma`, `kbt`, `mass`, `weight_exponent`, `collision_rate`, `shear_rate`,
-/// `body_force`.
+/// Keys `a`, `gamma`, `kbt`, `mass`, `weight_exponent`, `collision_rate`, `thermostat_mass`,
+/// `shear_rate`, `body_force`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Physics {
@@ -23,6 +23,9 @@ pub struct Physics {
     pub weight_exponent: f64,
     /// Lowe-Andersen collision frequency Gamma per pair (per unit time), for schemes with L.
     pub collision_rate: Option<f64>,
+    /// Mass mu of PAdL's adaptive friction factor xi (energy units), for schemes with Oa and
+    /// Xi: xi fluctuates around 1 with variance kbt / mu.
+    pub thermostat_mass: Option<f64>,
     /// Lees-Edwards shear rate kappa (x-velocity gradient along y); a non-zero rate measures
     /// the shear viscosity.
     pub shear_rate: Option<f64>,
@@ -41,6 +44,7 @@ impl Default for Physics {
             mass: 1.0,
             weight_exponent: 2.0,
             collision_rate: None,
+            thermostat_mass: None,
             shear_rate: None,
             body_force: None,
         }
@@ -61,6 +65,9 @@ impl Physics {
         if let Some(rate) = self.collision_rate {
             positive("collision_rate", rate)?;
         }
+        if let Some(mu) = self.thermostat_mass {
+            positive("thermostat_mass", mu)?;
+        }
         if let Some(k) = self.shear_rate {
             require("shear_rate", k, k.is_finite(), "must be finite")?;
         }
@@ -79,6 +86,7 @@ impl Physics {
     pub fn builder(&self) -> ParamsBuilder {
         ParamsBuilder {
             collision_rate: self.collision_rate,
+            thermostat_mass: self.thermostat_mass,
             ..Params::builder()
                 .a(self.a)
                 .gamma(self.gamma)
