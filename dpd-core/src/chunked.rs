@@ -53,29 +53,6 @@ impl<U> Parts<U> {
 }
 
 impl<U> Parts<U> {
-    /// Keep, in order, the items for which `keep(k, item)` is true, `k` the item's index
-    /// before; `bounds` (ascending indices into the sequence, such as the ends of runs) move
-    /// with the items, each to the new index of the first item kept at or after it.
-    pub(crate) fn retain(&mut self, bounds: &mut [u32], mut keep: impl FnMut(usize, &U) -> bool) {
-        let (mut old, mut new, mut b) = (0, 0, 0);
-        for (part, end) in self.parts.iter_mut().zip(&mut self.starts[1..]) {
-            part.retain(|item| {
-                while bounds.get(b).is_some_and(|&x| x as usize == old) {
-                    bounds[b] = new as u32;
-                    b += 1;
-                }
-                let kept = keep(old, item);
-                old += 1;
-                new += usize::from(kept);
-                kept
-            });
-            *end = new;
-        }
-        for x in &mut bounds[b..] {
-            *x = new as u32;
-        }
-    }
-
     /// Append one more part, filled by `f`.
     pub(crate) fn append(&mut self, f: impl FnOnce(&mut Vec<U>)) {
         let mut part = Vec::new();
@@ -164,23 +141,6 @@ pub(crate) fn flat_map_ordered<T: Sync, U: Send>(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// Retaining keeps the items in order, calls `keep` with their old indices, and moves each
-    /// bound to where the first item kept at or after it went (runs of 3, 0 and 4 items).
-    #[test]
-    fn retain_moves_the_bounds_with_the_items() {
-        let mut parts = Parts::default();
-        parts.append(|p| p.extend([0, 1, 2]));
-        parts.append(|p| p.extend([3, 4, 5, 6]));
-        let mut bounds = [0, 3, 3, 7];
-        parts.retain(&mut bounds, |k, &x| {
-            assert_eq!(k, x as usize);
-            x % 3 != 0
-        });
-        assert_eq!(parts.iter().copied().collect::<Vec<_>>(), [1, 2, 4, 5]);
-        assert_eq!(bounds, [0, 2, 2, 4]);
-        assert_eq!((parts.len(), parts.slice(2..4)), (4, &[4, 5][..]));
-    }
 
     #[test]
     fn same_result_on_any_thread_count() {

@@ -3,7 +3,7 @@
 
 use crate::boundary::PeriodicBox;
 use crate::neighbour::VerletList;
-use crate::pairs::{Ends, Noise, PairTable, Particles, Run, Two, Virial};
+use crate::pairs::{Ends, Excluding, Noise, PairTable, Particles, Run, Two, Virial};
 use crate::params::Params;
 use crate::Vec3;
 use dpd_ir::SweepOrder;
@@ -79,8 +79,18 @@ fn full_while_filling_with<F: Friction>(s: FullInputs, friction: F) {
     };
     let each = |run: Run<Vec3, _>| run.sweep(forces);
     let out = zeroed(s.full, s.q.len());
-    s.pairs
-        .collect_then(s.list, s.q, s.bx, s.params, s.noise, s.particles, out, each);
+    let (list, q, bx, params, excluding) = (s.list, s.q, s.bx, s.params, s.excluding);
+    s.pairs.collect_then(
+        list,
+        q,
+        bx,
+        params,
+        excluding,
+        s.noise,
+        s.particles,
+        out,
+        each,
+    );
 }
 
 /// What a full-force evaluation reads and writes: the pair table and what fills it, the
@@ -91,6 +101,8 @@ pub(crate) struct FullInputs<'a> {
     pub(crate) q: &'a [Vec3],
     pub(crate) bx: &'a PeriodicBox,
     pub(crate) params: &'a Params,
+    /// The pairs the system leaves out, if any.
+    pub(crate) excluding: Option<Excluding<'a>>,
     pub(crate) particles: Particles<'a, &'a [Vec3]>,
     pub(crate) full: &'a mut Vec<Vec3>,
     pub(crate) add: Full,

@@ -1,9 +1,7 @@
 //! Pairs without pair forces: the bonded pairs of a system that excludes them (LAMMPS's
-//! `special_bonds lj 0 1 1` with `pair_style dpd`), taken out of the table after each fill, so
-//! that no sweep, force or observable sees them. A system that excludes nothing never calls
-//! this and fills as before.
-
-use super::PairTable;
+//! `special_bonds lj 0 1 1` with `pair_style dpd`), never put in the table (the fill asks
+//! [`Excluding::keeps`] of each pair within the cut-off), so that no sweep, force or
+//! observable sees them. A system that excludes nothing fills with a check that compiles away.
 
 /// The pairs left out, as each particle's partners by particle id: those of id `a` are
 /// `partners[start[a]..start[a + 1]]`.
@@ -38,32 +36,62 @@ impl Exclusions {
         Exclusions { start, partners }
     }
 
-    /// Whether the pair of ids `a` and `b` is left out.
+    /// The ids whose pairs with id `a` are left out.
     #[inline(always)]
-    fn excludes(&self, a: u32, b: u32) -> bool {
+    fn of(&self, a: u32) -> &[u32] {
         let (s, e) = (self.start[a as usize], self.start[a as usize + 1]);
-        self.partners[s as usize..e as usize].contains(&b)
+        &self.partners[s as usize..e as usize]
     }
 }
 
-impl PairTable {
-    /// Take the pairs `exclusions` names out of the table, particles stored in the order of
-    /// `ids` (their ids); the runs, colours and velocity shifts stay those of the pairs kept.
-    pub(crate) fn exclude(&mut self, exclusions: &Exclusions, ids: &[u32]) {
-        let mut dropped = Vec::new();
-        self.pairs.retain(&mut self.groups.runs, |k, p| {
-            let kept = !exclusions.excludes(ids[p.i as usize], ids[p.j as usize]);
-            if !kept {
-                dropped.push(k);
-            }
-            kept
-        });
-        if self.shifted && !dropped.is_empty() {
-            let mut k = 0;
-            self.shifts.retain(|_| {
-                k += 1;
-                dropped.binary_search(&(k - 1)).is_err()
-            });
-        }
+/// Which of the pairs within the cut-off a fill keeps, by storage indices: asked per pair, or
+/// for the hits of one particle once for the particle and then per partner.
+pub(crate) trait Keep: Copy + Sync {
+    /// Whether the pair `(i, j)` is kept.
+    fn keeps(self, i: u32, j: u32) -> bool;
+    /// Whether the pair `(a, j)` is kept, as a test of `j`.
+    fn with(self, a: u32) -> impl Fn(u32) -> bool;
+}
+
+/// Every pair is kept: a fill without exclusions, whose checks compile away.
+#[derive(Clone, Copy)]
+pub(crate) struct All;
+
+impl Keep for All {
+    #[inline(always)]
+    fn keeps(self, _: u32, _: u32) -> bool {
+        true
+    }
+    #[inline(always)]
+    fn with(self, _: u32) -> impl Fn(u32) -> bool {
+        |_| true
+    }
+}
+
+/// A system's exclusions read through its particles' ids, for a fill that works in storage
+/// indices.
+#[derive(Clone, Copy)]
+pub(crate) struct Excluding<'a> {
+    exclusions: &'a Exclusions,
+    /// The particle id of each storage index.
+    ids: &'a [u32],
+}
+
+impl<'a> Excluding<'a> {
+    /// `exclusions`, if a system has any, for particles whose ids are `ids` in storage order.
+    pub(crate) fn of(exclusions: Option<&'a Exclusions>, ids: &'a [u32]) -> Option<Self> {
+        exclusions.map(|exclusions| Excluding { exclusions, ids })
+    }
+}
+
+impl Keep for Excluding<'_> {
+    #[inline(always)]
+    fn keeps(self, i: u32, j: u32) -> bool {
+        self.with(i)(j)
+    }
+    #[inline(always)]
+    fn with(self, a: u32) -> impl Fn(u32) -> bool {
+        let (left_out, ids) = (self.exclusions.of(self.ids[a as usize]), self.ids);
+        move |j| !left_out.contains(&ids[j as usize])
     }
 }

@@ -7,7 +7,9 @@ use crate::params::Params;
 use crate::walls::FrozenWalls;
 use crate::Vec3;
 
-use super::{on_all_threads, Bound, Momenta, Noise, Pair, PairTable, Particles, Run};
+use super::{
+    on_all_threads, All, Bound, Excluding, Keep, Momenta, Noise, Pair, PairTable, Particles, Run,
+};
 
 impl PairTable {
     /// Refill with the pairs of `list` that interact at positions `q`, keeping its order: from
@@ -18,7 +20,7 @@ impl PairTable {
     /// when the cut-offs differ).
     ///
     /// Coincident particles (`r = 0`) have no defined direction; such a pair is left out, so it
-    /// exerts no force rather than a NaN one.
+    /// exerts no force rather than a NaN one; so is a pair `excluding` names.
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn collect(
         &mut self,
@@ -29,9 +31,32 @@ impl PairTable {
         walls: Option<&FrozenWalls>,
         params: &Params,
         kind: &[u16],
+        excluding: Option<Excluding>,
+    ) {
+        let cell = (list, q, bx, shear, walls, params, kind);
+        match excluding {
+            None => self.collect_keeping(cell, All),
+            Some(x) => self.collect_keeping(cell, x),
+        }
+    }
+
+    /// [`PairTable::collect`] keeping the in-range pairs `keep` keeps.
+    #[allow(clippy::type_complexity)]
+    fn collect_keeping(
+        &mut self,
+        (list, q, bx, shear, walls, params, kind): (
+            &VerletList,
+            &[Vec3],
+            &PeriodicBox,
+            Option<&LeesEdwards>,
+            Option<&FrozenWalls>,
+            &Params,
+            &[u16],
+        ),
+        keep: impl Keep,
     ) {
         match (shear, walls) {
-            (None, None) => self.fill_plainly(list, q, bx, params, kind, |_: &[Pair]| {}),
+            (None, None) => self.fill_plainly(list, q, bx, params, kind, keep, |_: &[Pair]| {}),
             // The scan's separation is the image, but the velocity shift needs the crossing
             // count: both come from the positions.
             (Some(le), _) => {
@@ -53,7 +78,7 @@ impl PairTable {
                     #[inline(always)]
                     |i, j, _| Some(image(le, bx, q, i, j).0),
                 );
-                fill.into(self, from_positions, scanned, |_: &[Pair]| {});
+                fill.into(self, from_positions, scanned, keep, |_: &[Pair]| {});
                 let shifts = self.pairs.iter().map(|p| image(le, bx, q, p.i, p.j).1);
                 self.shifts.extend(shifts);
             }
@@ -63,7 +88,7 @@ impl PairTable {
                     (!(w.frozen[i as usize] && w.frozen[j as usize])).then_some(d)
                 };
                 let image = |i, j, d| mobile(i, j, bx.min_image(d));
-                fill.into(self, image, Some(mobile), |_: &[Pair]| {});
+                fill.into(self, image, Some(mobile), keep, |_: &[Pair]| {});
                 let v = &w.velocity_x;
                 let shifts = self.pairs.iter().map(|p| v[p.i as usize] - v[p.j as usize]);
                 self.shifts.extend(shifts);
@@ -76,6 +101,7 @@ impl PairTable {
     /// thread that filled it, colour by colour, so that `after` may read what the run's pairs
     /// read of `particles`, draw their normals of `noise` and update their particles' entries
     /// in `out` (one per particle) as [`PairTable::sweep_noisy`] would, in the same order.
+    /// Pairs `excluding` names are left out, as [`PairTable::collect`] leaves them.
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn collect_then<M: Momenta, W: Send>(
         &mut self,
@@ -83,6 +109,7 @@ impl PairTable {
         q: &[Vec3],
         bx: &PeriodicBox,
         params: &Params,
+        excluding: Option<Excluding>,
         noise: Option<Noise>,
         particles: Particles<M>,
         out: &mut [W],
@@ -105,11 +132,16 @@ impl PairTable {
                 out,
             })
         };
-        self.fill_plainly(list, q, bx, params, kind, run);
+        match excluding {
+            None => self.fill_plainly(list, q, bx, params, kind, All, run),
+            Some(x) => self.fill_plainly(list, q, bx, params, kind, x, run),
+        }
     }
 
     /// Refill in a periodic box without walls, calling `after` with the pairs of every run once
-    /// it is filled ([`Fill::into`]); the table's indices are below `Bound::of(q)`.
+    /// it is filled ([`Fill::into`]), keeping the in-range pairs `keep` keeps; the
+    /// table's indices are below `Bound::of(q)`.
+    #[allow(clippy::too_many_arguments)]
     fn fill_plainly(
         &mut self,
         list: &VerletList,
@@ -117,11 +149,12 @@ impl PairTable {
         bx: &PeriodicBox,
         params: &Params,
         kind: &[u16],
+        keep: impl Keep,
         after: impl Fn(&[Pair]) + Sync,
     ) {
         let fill = self.start_fill(list, q, bx, None, (params, kind), false);
         let image = |_, _, d| Some(bx.min_image(d));
-        fill.into(self, image, None::<Separation>, after);
+        fill.into(self, image, None::<Separation>, keep, after);
     }
 
     /// Reset the table for a fill at positions `q` of particles of types `kind`, which records
@@ -170,14 +203,16 @@ impl Fill<'_> {
     /// image, or `None` for a pair that does not interact (two frozen particles); without skin
     /// from the grid's scan, with `scanned(i, j, d)` doing the same for the scan's
     /// minimum-image separation `d`, or with the scan's hits as they are when `scanned` is
-    /// `None`. `after(run)` is called with every run once it is filled, colour by colour, the
-    /// runs of one colour on the threads that filled them.
+    /// `None`. Of the pairs within the cut-off, those `keep` keeps are kept. `after(run)` is
+    /// called with every run once it is filled, colour by colour, the runs of one colour on the
+    /// threads that filled them.
     #[inline(always)]
     fn into(
         self,
         table: &mut PairTable,
         image: impl Fn(u32, u32, Vec3) -> Option<Vec3> + Sync,
         scanned: Option<impl Fn(u32, u32, Vec3) -> Option<Vec3> + Sync>,
+        keep: impl Keep,
         after: impl Fn(&[Pair]) + Sync,
     ) {
         if self.params.cutoff_by_type() {
@@ -192,7 +227,7 @@ impl Fill<'_> {
                     Pair { i, j, e, w, wr }
                 })
             };
-            return self.each(table, image, scanned, pair, after);
+            return self.each(table, image, scanned, pair, keep, after);
         }
         let Fill {
             list,
@@ -236,10 +271,13 @@ impl Fill<'_> {
                 #[inline(always)]
                 |h, out| {
                     out.reserve(h.len());
+                    let kept = keep.with(h.a());
                     for k in 0..h.len() {
                         if interacts(h.r2[k]) {
                             let (j, d) = h.get(k);
-                            out.push(geometry(h.a(), j, d, h.r[k], h.inv_r[k]));
+                            if kept(j) {
+                                out.push(geometry(h.a(), j, d, h.r[k], h.inv_r[k]));
+                            }
                         }
                     }
                 },
@@ -247,11 +285,11 @@ impl Fill<'_> {
             );
             return;
         }
-        self.each(table, image, scanned, pair, after);
+        self.each(table, image, scanned, pair, keep, after);
     }
 
     /// [`Fill::into`] with `pair(i, j, d)` making the pair at separation `d`, or `None` when it
-    /// does not interact, for every candidate or hit.
+    /// does not interact, for every candidate or hit, and the pairs `keep` keeps kept.
     #[inline(always)]
     fn each(
         self,
@@ -259,6 +297,7 @@ impl Fill<'_> {
         image: impl Fn(u32, u32, Vec3) -> Option<Vec3> + Sync,
         scanned: Option<impl Fn(u32, u32, Vec3) -> Option<Vec3> + Sync>,
         pair: impl Fn(u32, u32, Vec3) -> Option<Pair> + Sync,
+        keep: impl Keep,
         after: impl Fn(&[Pair]) + Sync,
     ) {
         let Fill {
@@ -274,12 +313,13 @@ impl Fill<'_> {
             let grid = list.grid();
             table.groups = match &scanned {
                 Some(scanned) => {
-                    let emit = |h: &Hits, out: &mut Vec<Pair>| emit(scanned, &pair, h, out);
+                    let emit = |h: &Hits, out: &mut Vec<Pair>| emit(scanned, &pair, keep, h, out);
                     grid.sweep(q, bx, shear, rc, &mut table.pairs, emit, after)
                 }
                 None => {
-                    let emit =
-                        |h: &Hits, out: &mut Vec<Pair>| emit(&|_, _, d| Some(d), &pair, h, out);
+                    let emit = |h: &Hits, out: &mut Vec<Pair>| {
+                        emit(&|_, _, d| Some(d), &pair, keep, h, out)
+                    };
                     grid.sweep(q, bx, shear, rc, &mut table.pairs, emit, after)
                 }
             };
@@ -303,7 +343,8 @@ impl Fill<'_> {
                 let start = out.len();
                 for &(i, j) in *run {
                     let d = q[i as usize] - q[j as usize];
-                    out.extend(image(i, j, d).and_then(|g| pair(i, j, g)));
+                    let made = image(i, j, d).and_then(|g| pair(i, j, g));
+                    out.extend(made.filter(|_| keep.keeps(i, j)));
                 }
                 after(&out[start..]);
             },
@@ -322,16 +363,20 @@ impl Fill<'_> {
 }
 
 /// Push onto `out` the pairs of the scan's hits `h`: for each, `pair` at the separation
-/// `seen(i, j, d)` gives for the scan's minimum-image separation `d`, if both give one.
+/// `seen(i, j, d)` gives for the scan's minimum-image separation `d`, if both give one and
+/// `keep` keeps the pair.
 #[inline(always)]
 fn emit(
     seen: &impl Fn(u32, u32, Vec3) -> Option<Vec3>,
     pair: &impl Fn(u32, u32, Vec3) -> Option<Pair>,
+    keep: impl Keep,
     h: &Hits,
     out: &mut Vec<Pair>,
 ) {
+    let kept = keep.with(h.a());
     for k in 0..h.len() {
         let (j, d) = h.get(k);
-        out.extend(seen(h.a(), j, d).and_then(|g| pair(h.a(), j, g)))
+        let made = seen(h.a(), j, d).and_then(|g| pair(h.a(), j, g));
+        out.extend(made.filter(|_| kept(j)))
     }
 }

@@ -11,7 +11,8 @@ mod fill;
 use ends::Momenta;
 pub(crate) use ends::{Ends, Particles, Span};
 pub(crate) use engine::{Run, Two};
-pub(crate) use exclude::Exclusions;
+use exclude::{All, Keep};
+pub(crate) use exclude::{Excluding, Exclusions};
 
 use crate::chunked::Parts;
 use crate::disjoint::Disjoint;

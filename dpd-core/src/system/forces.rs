@@ -2,7 +2,7 @@
 
 use super::System;
 use crate::force::{self, Full, FullInputs};
-use crate::pairs::{Particles, Run};
+use crate::pairs::{Excluding, Particles, Run};
 use crate::stamp::Stamp;
 use crate::{Tensor, Vec3};
 
@@ -25,8 +25,9 @@ impl System {
             // ran 3 % more instructions.
             let each = |run: Run<Vec3, ()>| run.for_each(force::add_conservative);
             let (list, q, bx, params) = (&self.list, &self.q, &self.bx, &self.params);
+            let excluding = Excluding::of(self.exclusions.as_ref(), &self.id);
             self.pairs
-                .collect_then(list, q, bx, params, None, particles, out, each);
+                .collect_then(list, q, bx, params, excluding, None, particles, out, each);
             self.pairs_filled();
         }
         self.conservative_at = Stamp::at(self.positions);
@@ -54,14 +55,12 @@ impl System {
 
     /// Whether a force evaluation may fill the pair table and apply the forces run by run
     /// ([`PairTable::collect_then`]): the table is stale, the box is periodic without walls,
-    /// no pair impulses are being recorded and no pairs are excluded (their runs would be
-    /// applied before the exclusion).
+    /// and no pair impulses are being recorded.
     fn fills_plainly(&self) -> bool {
         !self.pairs_at.is_fresh(self.positions)
             && self.shear.is_none()
             && self.walls.is_none()
             && self.impulses.is_none()
-            && self.exclusions.is_none()
     }
 
     /// Full forces from the filled pair table; the pair virial of their dissipative and random
@@ -93,6 +92,7 @@ impl System {
             ref inv_mass,
             ref kind,
             ref id,
+            ref exclusions,
             ref params,
             ref mut full,
             seed,
@@ -108,6 +108,7 @@ impl System {
             q,
             bx,
             params,
+            excluding: Excluding::of(exclusions.as_ref(), id),
             particles: Particles::new(inv_mass, kind, params.coefficients()).with_momenta(p),
             full,
             add,

@@ -4,7 +4,7 @@ use crate::bonded::{Located, Overstretch, Topology};
 use crate::boundary::{LeesEdwards, PeriodicBox};
 use crate::error::{finite_vectors, ParamError};
 use crate::neighbour::VerletList;
-use crate::pairs::{Exclusions, PairTable};
+use crate::pairs::{Excluding, Exclusions, PairTable};
 use crate::parallel::on_all_threads;
 use crate::params::Params;
 use crate::stamp::{Generation, Stamp};
@@ -336,10 +336,8 @@ impl System {
                 self.walls.as_ref(),
                 &self.params,
                 &self.kind,
+                Excluding::of(self.exclusions.as_ref(), &self.id),
             );
-            if let Some(exclusions) = &self.exclusions {
-                self.pairs.exclude(exclusions, &self.id);
-            }
             self.pairs_filled();
         }
     }
