@@ -16,7 +16,8 @@
 # starting the other engine in the same state (energy, temperature, virial pressure); and force
 # groups on a bead-spring melt (ABOBA, an MTS ABOBA, T beside B[bond] and `dpd run` against pair
 # dpd + bond harmonic + fix nve in mean bond length, pressure and <R_g^2>; r-RESPA at inner
-# count 1 bitwise OBABO). The exported tree is built in a
+# count 1 bitwise OBABO; bonded pairs excluded by special_bonds lj 0 from the pair forces, the
+# sweeps and F stages). The exported tree is built in a
 # fresh directory without cargo, rustc or the checkout (docs/lammps.md, "Export and build").
 # The full evidence (1 and 2 ranks, 2000 steps, the plugin's VV against pair dpd + fix nve;
 # shear over 400 time units) is run by hand: `bash scripts/test-lammps.sh --only equilibrium`

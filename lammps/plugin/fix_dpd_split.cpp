@@ -119,6 +119,12 @@ bool needs_ghosts(int flow)
   return flow == DpdSplit::FLOW_O || flow == DpdSplit::FLOW_OB || flow == DpdSplit::FLOW_T;
 }
 
+/// Whether a stage applies DPD friction and noise pair by pair (O, Ob, T sweeps; F's forces).
+bool pairwise_flow(int flow)
+{
+  return needs_ghosts(flow) || flow == DpdSplit::FLOW_F;
+}
+
 bool is_trotter(int flow)
 {
   return flow == DpdSplit::FLOW_T;
@@ -358,6 +364,7 @@ void FixDPDSplit::init()
   check_exclusive();
   check_cutoffs_and_tags();
   check_subdomain_size();
+  check_special_factors();
   check_trotter_input();
   check_groups();
   // Sweeps at the positions of dpd/soft's last evaluation take its in-range pairs.
@@ -422,6 +429,25 @@ void FixDPDSplit::check_cutoffs_and_tags()
                "is keyed by", most);
 }
 
+/// In a molecular system, refuse special_bonds lj factors other than 0 and 1 for a scheme with
+/// pair stages (O, Ob, T, F): a pair of factor 0 is excluded from them (colour_pairs_of_list,
+/// and dpd/soft records none), as from dpd/soft's force and LAMMPS's neighbour list, while a
+/// pair of factor 1 gets its whole friction and noise; a fraction of them has no counterpart in
+/// `dpd run` and would need its own fluctuation-dissipation balance.
+void FixDPDSplit::check_special_factors()
+{
+  if (!atom->molecular || !any_stage(*scheme, pairwise_flow)) return;
+  for (int k = 1; k < 4; ++k) {
+    double factor = force->special_lj[k];
+    if (factor != 0.0 && factor != 1.0)
+      error->all(FLERR, "fix dpd/split: special_bonds lj factor {} of 1-{} neighbours (lj {} {} "
+                 "{}) is neither 0 nor 1: the fix's sweeps and F stages apply a pair's whole "
+                 "friction and noise, or none at factor 0 (the pair excluded, as `dpd run`'s "
+                 "exclude_bonded), and do not scale them; use factors 0 or 1", factor, k + 1,
+                 force->special_lj[1], force->special_lj[2], force->special_lj[3]);
+  }
+}
+
 /// For a scheme with a T stage, point `soft` at the pair style dpd/soft whose force T
 /// includes, refusing inputs whose conservative force is anything else: T's exact update
 /// needs each pair's force, which LAMMPS's per-atom force sum does not give.
@@ -452,12 +478,6 @@ void FixDPDSplit::check_trotter_input()
     refuse("improper", force->improper, force->improper_style);
   }
   refuse("kspace", force->kspace, force->kspace_style);
-  if (atom->molecular)
-    for (int k = 1; k < 4; ++k)
-      if (force->special_lj[k] != 1.0)
-        error->all(FLERR, "{}special_bonds lj factors must be 1 (got {} {} {}): T applies "
-                   "dpd/soft's force to every listed pair unscaled", why, force->special_lj[1],
-                   force->special_lj[2], force->special_lj[3]);
   int n = atom->ntypes + 1;
   for (int i = 1; i < n; ++i)
     for (int j = i; j < n; ++j)
@@ -741,8 +761,8 @@ void FixDPDSplit::colour_atoms_of_list()
   }
 }
 
-/// The listed pairs of each colour's atoms, in the list's order (for sweeps without dpd/soft's
-/// record, and F stages).
+/// The listed pairs of each colour's atoms, in the list's order, less those of special factor 0
+/// (for sweeps without dpd/soft's record, and F stages).
 void FixDPDSplit::colour_pairs_of_list()
 {
   colour_atoms_of_list();
@@ -754,6 +774,8 @@ void FixDPDSplit::colour_pairs_of_list()
     for (int i : colour_atoms[c]) {
       const int *jlist = list->firstneigh[i];
       for (int jj = 0; jj < list->numneigh[i]; ++jj) {
+        // Pairs of special factor 0 are excluded (check_special_factors).
+        if (force->special_lj[jlist[jj] >> SBBITS & 3] == 0.0) continue;
         pairs.push_back(i);
         pairs.push_back(jlist[jj] & NEIGHMASK);
       }

@@ -124,6 +124,7 @@ class FixDPDSplit : public Fix {
   void check_subdomain_size();
   void check_exclusive();
   void check_cutoffs_and_tags();
+  void check_special_factors();
   void check_trotter_input();
   void check_groups();
   void prepare_atoms();

@@ -23,7 +23,8 @@ class PairDPDSoft : public Pair {
   /// has run: fix dpd/split's T stages include this force in their exact pair update.
   const double *strengths() const { return a.data(); }
   const double *cutoffs() const { return cut.data(); }
-  /// Record the pairs within the cutoff of every evaluation of this run, with their geometry
+  /// Record the pairs within the cutoff (less those of special factor 0, which get no force and
+  /// which the fix's sweeps exclude) of every evaluation of this run, with their geometry
   /// (fix dpd/split asks for it in its init(), after this style's init_style() has reset it):
   /// the fix's sweeps at the positions of the last evaluation take them from `record()` instead
   /// of passing over the neighbour list. `recordings()` counts the evaluations recorded.

@@ -19,7 +19,8 @@ Evidence (each check states its tolerance where it defines it):
   inner step) against LAMMPS's pair dpd + bond harmonic + fix nve in mean bond length and
   pressure; an MTS scheme with inner count 1 repeats its flat scheme bitwise; T beside
   B[bond]; refusals of what no group holds; bonded pairs excluded (`special_bonds lj 0 1 1`
-  against `dpd run` with `exclude_bonded = true`).
+  against `dpd run` with `exclude_bonded = true`, LAMMPS's pair dpd and the plugin's ABOBA),
+  and left out of the fix's sweeps and F stages (hot dimers keep their energy).
 """
 
 import argparse
@@ -693,10 +694,11 @@ MELT_BOND = f"bond_style harmonic\nbond_coeff 1 {MELT_K} {MELT_R0}"
 
 
 def melt_input(args, integrator, steps, dt, thermo, seed=2024, extra="", data="melt-eq.data",
-               special="1 1 1"):
-    """The melt from `data` (in args.work) with `integrator` and `special_bonds lj {special}`;
-    thermo: step, temperature, pressure, mean bond length and the chains' mean R_g^2 (compute
-    gyration/chunk, which unwraps the beads by their image flags)."""
+               special="1 1 1", temperature=1.0, columns="step temp press c_bond v_mrg2"):
+    """The melt from `data` (in args.work) with `integrator` and `special_bonds lj {special}`,
+    velocities drawn at `temperature`; thermo `columns`, by default step, temperature, pressure,
+    mean bond length and the chains' mean R_g^2 (compute gyration/chunk, which unwraps the
+    beads by their image flags)."""
     data = os.path.join(args.work, data)
     return f"""
 units lj
@@ -707,7 +709,7 @@ read_data {data}
 neighbor {SKIN} bin
 neigh_modify every 1 delay 0 check yes
 timestep {dt!r}
-velocity all create 1.0 {seed + 1} mom yes dist gaussian
+velocity all create {temperature} {seed + 1} mom yes dist gaussian
 plugin load {args.plugin}
 {integrator}
 compute bonds all bond/local dist
@@ -717,7 +719,7 @@ compute rg all gyration/chunk mol
 variable rg2 vector c_rg*c_rg
 variable mrg2 equal ave(v_rg2)
 {extra}
-thermo_style custom step temp press c_bond v_mrg2
+thermo_style custom {columns}
 thermo_modify format float %.17g norm no
 thermo {thermo}
 run {steps}
@@ -886,6 +888,7 @@ def melt(args):
         melt_line(dt, name, results[name])
     ref = results.pop("LAMMPS pair dpd + fix nve")
     melt_excluded(args, mine_data, native, ref[:2])
+    excluded_sweeps(args)
     for name, mine in results.items():
         for k, key in enumerate(("mean bond length", "pressure", "<R_g^2>")):
             check(agree(mine[k], ref[k]), f"melt: {name} {key} {mine[k][0]:.5f} +- {mine[k][1]:.5f} vs LAMMPS "
@@ -921,7 +924,11 @@ def melt_excluded(args, data, native, kept):
     by more than 4 combined errors in both, so that a `dpd run` ignoring the exclusion fails
     (measured 6 Dec 2026: bond length 0.68509 +- 0.00021 against LAMMPS's 0.68482 +- 0.00018,
     1.0 sigma, kept 0.72100, 137 sigma away; pressure 20.321 +- 0.010 against 20.349 +- 0.047,
-    0.6 sigma, kept 20.735, 6.5 sigma away; the whole check well under 20 s)."""
+    0.6 sigma, kept 20.735, 6.5 sigma away; the whole check well under 20 s). Then the plugin's
+    ABOBA (dpd/soft, `special_bonds lj 0 1 1`, its pair impulses in the virial) against `dpd
+    run aboba` (4 runs) with `exclude_bonded = true` and against LAMMPS's excluded run, in the
+    same quantities and tolerance. At equilibrium these test the exclusion of the pair force;
+    whether the fix's sweeps also leave the bonded pairs out is excluded_sweeps' question."""
     dt, equil, steps = 0.01, 300, 2000
     text = melt_input(args, native, equil + steps, dt, 10, special="0 1 1")
     code, out = run_lammps(args, text, 1, "melt-excluded")
@@ -943,6 +950,94 @@ def melt_excluded(args, data, native, kept):
                                       f"({sigmas_apart(mine[k], ref[k]):.1f} sigma)")
         z = sigmas_apart(ref[k], kept[k])
         check(z > SIGMAS, f"  ... and LAMMPS's {key} with the pairs kept differs by {z:.1f} sigma")
+    plugin = ("pair_style dpd/soft 1.0\npair_coeff 1 1 25.0\n" + MELT_BOND +
+              f"\nfix 1 all dpd/split aboba 1.0 {GAMMA} 1.0 4321\nfix_modify 1 virial yes")
+    code, out = run_lammps(args, melt_input(args, plugin, equil + steps, dt, 10, special="0 1 1"), 1,
+                           "melt-excluded-plugin")
+    rows = [r for r in thermo_rows(out) if r[0] > equil] if code == 0 else []
+    if not rows:
+        check(False, f"melt, excluded bonded pairs, the plugin ran: {out[-2000:]}")
+        return
+    plugin_stats = [mean_and_error([r[c] for r in rows]) for c in (3, 2)]
+    aboba = dpd_run(args, "aboba", dt, dt * (equil + steps), 4, keys=("chains/bond_length", "pressure"),
+                    scene=["--scene", scene, "--init", data])
+    for k, key in enumerate(("mean bond length", "pressure")):
+        print(f"     melt dt={dt}, bonded pairs excluded: {key}: plugin aboba {plugin_stats[k][0]:.5f} +- "
+              f"{plugin_stats[k][1]:.5f}, dpd run aboba {aboba[k][0]:.5f} +- {aboba[k][1]:.5f}", flush=True)
+        for other, name in ((aboba[k], "dpd run aboba"), (ref[k], "LAMMPS's")):
+            check(agree(plugin_stats[k], other),
+                  f"melt, bonded pairs excluded: the plugin's aboba {key} agrees with {name} "
+                  f"({sigmas_apart(plugin_stats[k], other):.1f} sigma)")
+
+
+def dimers_data(path, per_side=4, spacing=8.0, bond=0.7, seed=5):
+    """A LAMMPS data file (atom_style bond) of per_side^3 dimers of bond length `bond` on a
+    cubic lattice of `spacing` (box side per_side * spacing), each along a random direction."""
+    import random
+    rng = random.Random(seed)
+    side = per_side * spacing
+    lines = []
+    for k in range(per_side ** 3):
+        c = [spacing * (0.25 + (k // per_side ** d) % per_side) for d in range(3)]
+        u = [rng.gauss(0, 1) for _ in range(3)]
+        norm = math.sqrt(sum(v * v for v in u))
+        for b, x in enumerate((c, [c[d] + bond * u[d] / norm for d in range(3)])):
+            lines.append(f"{2 * k + b + 1} {k + 1} 1 {x[0]!r} {x[1]!r} {x[2]!r}")
+    n = len(lines)
+    with open(path, "w") as f:
+        f.write(f"dimers\n\n{n} atoms\n{n // 2} bonds\n1 atom types\n1 bond types\n\n"
+                f"0 {side!r} xlo xhi\n0 {side!r} ylo yhi\n0 {side!r} zlo zhi\n\nMasses\n\n1 1.0\n\n"
+                "Atoms # bond\n\n" + "\n".join(lines) + "\n\nBonds\n\n")
+        for k in range(n // 2):
+            f.write(f"{k + 1} 1 {2 * k + 1} {2 * k + 2}\n")
+
+
+# excluded_sweeps' tolerances (relative change of the total energy over its 50 steps), from its
+# runs of 6 Dec 2026 (printed by the check): with the bonded pairs excluded the schemes run
+# without any pair update and conserve the energy up to their discretisation error, which
+# stays within EXCLUDED_DRIFT; a sweep or F stage that acted on the bonded pairs would drain
+# the dimers' hot vibrations toward k_B T, as the pairs kept do by more than KEPT_DRAIN.
+EXCLUDED_DRIFT, KEPT_DRAIN = 0.01, 0.05
+
+
+def excluded_sweeps(args):
+    """Whether the fix's sweeps and F stages leave out bonded pairs excluded by special_bonds:
+    64 dimers (harmonic bond K = 100, r0 = 0.7, dpd/soft a = 25) 8 apart on a lattice, so that
+    no pair but the bonded ones comes within r_c over the run, started hot (T = 3; the fix's
+    k_B T = 1, gamma = 45), 50 steps at dt = 0.01 on 2 ranks. With `special_bonds lj 0 1 1`
+    (LAMMPS drops the bonded pairs from the neighbour list) and `lj 0 1 1 coul 1 1 1` (LAMMPS
+    keeps them in the list, marked with the factor 0, which the fix must honour) the total
+    energy is conserved (within EXCLUDED_DRIFT, relative) by ABOBA (its O over dpd/soft's
+    record), VV (F over the neighbour list) and T(1/2) B[bond](1/2) A B[bond](1/2) T(1/2);
+    with `lj 1 1 1` the pair updates drain it by more than KEPT_DRAIN. A factor between 0 and 1
+    is refused, naming it."""
+    data = os.path.join(args.work, "dimers.data")
+    dimers_data(data)
+    schemes = {"aboba": "aboba", "vv": "vv", "T beside B[bond]": identifier(SAS_BONDS)}
+    for special, excluded in (("0 1 1", True), ("0 1 1 coul 1 1 1", True), ("1 1 1", False)):
+        for name, scheme in schemes.items():
+            fix = ("pair_style dpd/soft 1.0\npair_coeff 1 1 25.0\n" + MELT_BOND +
+                   f"\nfix 1 all dpd/split {scheme} 1.0 45.0 1.0 4321")
+            text = melt_input(args, fix, 50, 0.01, 1, seed=98, data="dimers.data", special=special,
+                              temperature=3.0, columns="step etotal temp")
+            code, out = run_lammps(args, text, 2, "dimers")
+            rows = thermo_rows(out) if code == 0 else []
+            if not rows:
+                check(False, f"dimers, special_bonds lj {special}, {name} ran: {out[-2000:]}")
+                continue
+            change = max(abs(r[1] - rows[0][1]) for r in rows) / rows[0][1]
+            drain = (rows[0][1] - rows[-1][1]) / rows[0][1]
+            if excluded:
+                check(change <= EXCLUDED_DRIFT, f"dimers, special_bonds lj {special}: {name} leaves the bonded "
+                                                f"pairs alone, energy within {change:.4f} of its start")
+            else:
+                check(drain > KEPT_DRAIN, f"dimers, special_bonds lj {special}: {name} with the bonded pairs "
+                                          f"kept drains {drain:.4f} of the energy")
+    text = melt_input(args, "pair_style dpd/soft 1.0\npair_coeff 1 1 25.0\n" + MELT_BOND +
+                      f"\nfix 1 all dpd/split aboba 1.0 {GAMMA} 1.0 4321", 10, 0.01, 10, special="0.5 1 1")
+    code, out = run_lammps(args, text, 1, "melt-bad")
+    message = "special_bonds lj factor 0.5 of 1-2 neighbours (lj 0.5 1 1) is neither 0 nor 1"
+    check(code != 0 and message in out, f"melt, bad input, a special factor of 0.5: LAMMPS error containing {message!r}")
 
 
 def identifier(name):

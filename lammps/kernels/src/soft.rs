@@ -114,6 +114,11 @@ impl<'a> SoftStyle<'a> {
             let Some(tj) = self.type_of(types, j) else {
                 return DPD_LAMMPS_INDEX;
             };
+            // A pair of factor 0 (special_bonds lj 0: excluded) has no force, and is not
+            // recorded, so that the fix's sweeps exclude it too.
+            if factor == 0.0 {
+                continue;
+            }
             let d = [xi[0] - x[3 * j], xi[1] - x[3 * j + 1], xi[2] - x[3 * j + 2]];
             let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
             let pair = ti * (self.ntypes + 1) + tj;
@@ -349,6 +354,34 @@ mod tests {
             let sum: f64 = (0..3).map(|k| vatom[6 * k + c]).sum();
             assert!((sum - virial[c]).abs() < 1e-12);
         }
+    }
+
+    /// A pair of special factor 0 gets no force and is left out of the record; the others are
+    /// recorded with their geometry.
+    #[test]
+    fn pairs_of_factor_zero_are_excluded_and_not_recorded() {
+        let (a, rc) = tables();
+        let (x, types) = atoms();
+        let style = SoftStyle::new(2, &a, &rc, [1.0, 0.0, 1.0, 1.0]).unwrap();
+        let mut f = vec![0.0; 9];
+        let mut record = PairRecord::default();
+        record.clear(3);
+        let neighbours = [1, 2 | 1 << SBBITS];
+        let status = style.atom(
+            0,
+            &neighbours,
+            &x,
+            &types,
+            &mut f,
+            &mut Tally::default(),
+            Some(&mut record),
+        );
+        assert_eq!(status, 0);
+        assert_eq!(f[6..9], [0.0; 3], "{f:?}");
+        let pairs = record.pairs_of(&[0], 3).unwrap();
+        assert_eq!(pairs[0].len(), 1);
+        assert_eq!((pairs[0][0].i, pairs[0][0].j), (0, 1));
+        assert!((pairs[0][0].r - 0.5).abs() < 1e-12);
     }
 
     #[test]
