@@ -21,6 +21,7 @@
 //! | [`composition`] | Yoshida's triple jump composed symmetrically with exact O |
 //! | [`exponential`] | SETD, MSETD for small masses |
 //! | [`lowe`] | Lowe-Andersen collisions: Lowe's velocity Verlet + L, the ABOBA ordering ABLBA |
+//! | [`adaptive`] | the pairwise adaptive Langevin thermostat (PAdL) in the BAOAB and ABOBA orderings |
 //!
 //! [`check`] reports the analysis of a registry name or a scheme string (`dpd check`).
 //! [`stability`] runs every registered scheme over a matrix of friction, mass and time step.
@@ -29,6 +30,7 @@
 //! acceleration, state that `dpd_core::System` does not carry between steps (nor write to a
 //! checkpoint), so it could not restart exactly.
 
+pub mod adaptive;
 pub mod check;
 pub mod composition;
 pub mod exponential;

@@ -10,7 +10,7 @@ use dpd_ir::lang::{Diagnostic, Options};
 use serde::Serialize;
 use thiserror::Error;
 
-use crate::{composition, exponential, langevin, lowe, prk, shardlow, trotter, verlet};
+use crate::{adaptive, composition, exponential, langevin, lowe, prk, shardlow, trotter, verlet};
 
 /// What the catalogue claims about a scheme, written once here.
 ///
@@ -225,7 +225,7 @@ const PRK_DPD: &str = "Fluids 4, 156 (2019), doi:10.3390/fluids4030156";
 const ETD: &str =
     "N. Phan-Thien, N. Mai-Duy, D. Pan and B. C. Khoo, Comput. Phys. Commun. 185, 229 (2014)";
 
-static ENTRIES: [Entry; 23] = [
+static ENTRIES: [Entry; 25] = [
     entry(
         "vv",
         &["velocity-verlet", "groot-warren", "gw"],
@@ -315,6 +315,24 @@ static ENTRIES: [Entry; 23] = [
         || Box::new(lowe::ablba()),
         None,
         splitting(1, 1, 2, Some(2), true),
+    ),
+    entry(
+        "padl",
+        &[],
+        "pairwise adaptive Langevin: BAOAB with the friction factor xi updated around the sweep (needs thermostat_mass)",
+        "B. Leimkuhler and X. Shang, J. Comput. Phys. 324, 174 (2016); ordering: this crate",
+        || Box::new(adaptive::padl()),
+        None,
+        splitting(1, 2, 2, None, true),
+    ),
+    entry(
+        "padl-aboba",
+        &[],
+        "pairwise adaptive Langevin in the ABOBA ordering (needs thermostat_mass)",
+        "this crate (issue 49), after Leimkuhler and Shang (2016) and Shang (2021)",
+        || Box::new(adaptive::padl_aboba()),
+        None,
+        splitting(1, 1, 2, None, true),
     ),
     entry(
         "sas",

@@ -8,7 +8,8 @@
 //! friction, so every run starts in equilibrium, with Maxwell momenta for its mass, and the
 //! temperature errors measure what the scheme does to an equilibrium state. Temperatures are
 //! averaged over the second half of the run, at the end of full steps. Schemes with
-//! Lowe-Andersen collisions collide at the fixed [`COLLISION_RATE`].
+//! Lowe-Andersen collisions collide at the fixed [`COLLISION_RATE`], adaptive schemes (PAdL)
+//! have the fixed [`THERMOSTAT_MASS`].
 //!
 //! The blow-up guard of `System::advance` also trips when a particle may have moved more than
 //! half the box edge between two checks of the neighbour list; in a small box with light
@@ -29,6 +30,10 @@ use crate::registry::Entry;
 /// friction: their thermostat does not use it. 0.54 relaxes pairs at the mean rate of O's at
 /// gamma = 4.5 (docs/design-search.md).
 pub const COLLISION_RATE: f64 = 0.54;
+
+/// The thermostat mass of schemes with Oa and Xi (PAdL), whatever the matrix's friction:
+/// 10 gamma^2 at gamma = 4.5, xi = 1 +- 0.07 (docs/design-search.md).
+pub const THERMOSTAT_MASS: f64 = 202.5;
 
 /// A completed run is sane when both mean temperatures are within this factor of k_B T: a
 /// run at twice or half the target temperature is not a usable simulation, even if nothing
@@ -228,6 +233,7 @@ fn run_one(
 ) -> Result<Outcome, ParamError> {
     let params = (Params::builder().gamma(gamma))
         .collision_rate(COLLISION_RATE)
+        .thermostat_mass(THERMOSTAT_MASS)
         .build()?;
     let kbt = params.kbt();
     let masses = vec![mass; start.len()];

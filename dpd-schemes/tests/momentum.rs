@@ -14,7 +14,8 @@ fn mixed_box() -> System {
         Params::builder()
             .a_matrix(vec![vec![25.0, 40.0], vec![40.0, 25.0]])
             .gamma(4.5)
-            .collision_rate(common::COLLISION_RATE),
+            .collision_rate(common::COLLISION_RATE)
+            .thermostat_mass(common::THERMOSTAT_MASS),
         0.01,
         11,
     );

@@ -32,11 +32,16 @@ pub fn system(
 /// <w_D> = 0.0604 over the fluid's g(r) (docs/design-search.md).
 pub const COLLISION_RATE: f64 = 0.54;
 
+/// The thermostat mass of the adaptive (PAdL) schemes in these tests: 10 gamma^2 at
+/// gamma = 4.5, so that xi = 1 +- 0.07 (docs/design-search.md).
+pub const THERMOSTAT_MASS: f64 = 202.5;
+
 /// The standard equilibrium box (algorithms.md section 8): N = 500, density 3, a = 25,
 /// gamma = 4.5, k_B T = 1, m = 1, s = 2; collision rate [`COLLISION_RATE`] for schemes
 /// with L.
 pub fn standard_box(dt: f64, seed: u64) -> System {
-    let params = Params::builder().collision_rate(COLLISION_RATE);
+    let params =
+        (Params::builder().collision_rate(COLLISION_RATE)).thermostat_mass(THERMOSTAT_MASS);
     system(500, 3.0, 1.0, params, dt, seed)
 }
 
