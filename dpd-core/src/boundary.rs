@@ -59,6 +59,17 @@ impl PeriodicBox {
         )
     }
 
+    /// [`PeriodicBox::min_image`] of a `d` less than one and a half lengths out on every axis,
+    /// such as the difference of two positions in the box: one conditional shift per axis and
+    /// no general path, bitwise `min_image(d)` there (NaN stays NaN; an infinite component
+    /// stays infinite where `min_image` gives NaN). A loop over bonds calls it: the general
+    /// path's rounding call made the loop keep its values on the stack.
+    #[inline(always)]
+    pub(crate) fn near_image(&self, d: Vec3) -> Vec3 {
+        let l = self.lengths;
+        Vec3::new(shift1(d.x, l.x), shift1(d.y, l.y), shift1(d.z, l.z))
+    }
+
     /// `q` mapped into `[0, L)` on every axis. Non-finite input stays non-finite.
     #[inline(always)]
     pub fn wrap(&self, q: Vec3) -> Vec3 {
@@ -72,18 +83,24 @@ impl PeriodicBox {
 
 #[inline(always)]
 fn image1(d: f64, l: f64, inv: f64) -> f64 {
+    let e = shift1(d, l);
+    if e.abs() <= 0.5 * l {
+        e
+    } else {
+        d - l * (d * inv).round()
+    }
+}
+
+/// `d` shifted by one length `l` towards the origin if it lies more than half a length out.
+#[inline(always)]
+fn shift1(d: f64, l: f64) -> f64 {
     let half = 0.5 * l;
-    let e = if d > half {
+    if d > half {
         d - l
     } else if d < -half {
         d + l
     } else {
         d
-    };
-    if e.abs() <= half {
-        e
-    } else {
-        d - l * (d * inv).round()
     }
 }
 

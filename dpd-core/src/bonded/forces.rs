@@ -4,8 +4,8 @@ use super::{Angle, Bond, Located};
 use crate::boundary::{LeesEdwards, PeriodicBox};
 use crate::{Tensor, Vec3};
 
-/// Where the particles are: positions in storage order and the boundaries that give each bond
-/// vector its minimum image.
+/// Where the particles are: positions in storage order, wrapped into the box, and the
+/// boundaries that give each bond vector its minimum image.
 #[derive(Clone, Copy)]
 pub(crate) struct Frame<'a> {
     pub q: &'a [Vec3],
@@ -17,9 +17,14 @@ impl Frame<'_> {
     /// `q_i - q_j` under minimum image (storage indices).
     #[inline(always)]
     fn delta(&self, i: u32, j: u32) -> Vec3 {
-        let d = self.q[i as usize] - self.q[j as usize];
+        self.image(self.q[i as usize] - self.q[j as usize])
+    }
+
+    /// The minimum image of the difference `d` of two positions in the box.
+    #[inline(always)]
+    fn image(&self, d: Vec3) -> Vec3 {
         match self.shear {
-            None => self.bx.min_image(d),
+            None => self.bx.near_image(d),
             Some(le) => le.min_image(self.bx, d).0,
         }
     }
@@ -34,10 +39,9 @@ pub(crate) struct Overstretch {
     pub r: f64,
 }
 
-/// One bond as [`Located::each_bond`] visits it: bond number `n` of the topology, its vector
-/// `d = q_i - q_j` of squared length `r2`, the force on `i`.
+/// One bond as [`Located::each_bond`] visits it: its vector `d = q_i - q_j` of squared length
+/// `r2`, the force on `i`.
 struct BondTerm<'a> {
-    n: usize,
     bond: &'a Bond,
     d: Vec3,
     r2: f64,
@@ -109,16 +113,30 @@ impl Bend {
 }
 
 impl Located {
-    /// Visit every bond with its geometry and force.
+    /// Visit every bond with its geometry and force. The boundary is resolved once, not per
+    /// bond: each loop is compiled for its own.
     #[inline(always)]
-    fn each_bond(&self, frame: Frame, mut visit: impl FnMut(BondTerm)) {
+    fn each_bond(&self, frame: Frame, visit: impl FnMut(BondTerm)) {
+        match frame.shear {
+            None => self.each_bond_imaged(frame.q, |d| frame.bx.near_image(d), visit),
+            Some(le) => self.each_bond_imaged(frame.q, |d| le.min_image(frame.bx, d).0, visit),
+        }
+    }
+
+    /// [`Located::each_bond`] with the bond vectors imaged by `image`.
+    #[inline(always)]
+    fn each_bond_imaged(
+        &self,
+        q: &[Vec3],
+        image: impl Fn(Vec3) -> Vec3,
+        mut visit: impl FnMut(BondTerm),
+    ) {
         let styles = self.topology.bond_types();
-        for (b, &n) in self.bonds.iter().zip(&self.bond_index) {
-            let d = frame.delta(b.i, b.j);
+        for b in &self.bonds {
+            let d = image(q[b.i as usize] - q[b.j as usize]);
             let r2 = d.norm_squared();
             let force = styles[b.kind as usize].force_over_r(r2) * d;
             visit(BondTerm {
-                n: n as usize,
                 bond: b,
                 d,
                 r2,
@@ -150,26 +168,29 @@ impl Located {
         out.clear();
         out.resize(frame.q.len(), Vec3::zeros());
         let styles = self.topology.bond_types();
-        let mut overstretch = None;
-        self.each_bond(frame, |t| {
-            if styles[t.bond.kind as usize].overstretched(t.r2)
-                && overstretch.is_none_or(|o: Overstretch| t.n < o.bond)
-            {
-                overstretch = Some(Overstretch {
-                    bond: t.n,
-                    r: t.r2.sqrt(),
-                });
-            }
-            out[t.bond.i as usize] += t.force;
-            out[t.bond.j as usize] -= t.force;
-        });
+        let mut stretched = false;
+        // Inlined into both loops of `each_bond` (one per boundary).
+        self.each_bond(
+            frame,
+            #[inline(always)]
+            |t| {
+                stretched |= styles[t.bond.kind as usize].overstretched(t.r2);
+                out[t.bond.i as usize] += t.force;
+                out[t.bond.j as usize] -= t.force;
+            },
+        );
         self.each_angle(frame, |t| {
             let ([fi, fk], a) = (t.forces, t.angle);
             out[a.i as usize] += fi;
             out[a.k as usize] += fk;
             out[a.j as usize] -= fi + fk;
         });
-        overstretch
+        // Which bond, looked for only when some bond is (a blow-up): the loop stays short.
+        if stretched {
+            self.overstretch(frame)
+        } else {
+            None
+        }
     }
 
     /// The bonded virial tensor `sum_bonds d (x) F + sum_angles (a (x) F_i + b (x) F_k)` at
