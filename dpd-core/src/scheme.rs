@@ -69,6 +69,7 @@ impl System {
         steps: u64,
     ) -> Result<(), AdvanceError> {
         self.check_scheme(scheme)?;
+        self.set_sweeps_fill_forces(scheme.program().is_some_and(kicks_after_sweeps));
         Ok(self.guarded_steps(steps, scheme.name(), |sys| scheme.step(sys))?)
     }
 
@@ -121,6 +122,25 @@ impl System {
         }
         Ok(())
     }
+}
+
+/// Whether some pair sweep of `program` (a stage other than A, B and F) is followed, before
+/// any drift or full-force kick, by a kick with the conservative pair forces (B or B[pair]),
+/// reading the stages cyclically: MTS's `... O B[pair]`. Such a program's sweeps fill the pair
+/// table with those forces ([`System::ensure_sweep_pairs`]).
+fn kicks_after_sweeps(program: &Program) -> bool {
+    let stages = &program.stages;
+    let n = stages.len();
+    (0..n).any(|s| {
+        !matches!(stages[s].flow, Flow::A | Flow::B | Flow::F)
+            && (1..n)
+                .map(|k| &stages[(s + k) % n])
+                .find(|t| {
+                    matches!(t.flow, Flow::A | Flow::F)
+                        || (t.flow == Flow::B && t.group != Some(ForceGroup::Bond))
+                })
+                .is_some_and(|t| t.flow == Flow::B)
+    })
 }
 
 /// What the forces of `group` are, for messages.
@@ -193,5 +213,28 @@ impl Scheme for DynScheme {
     }
     fn program(&self) -> Option<&Program> {
         Some(&self.program)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A sweep fills the pair forces when a B or B[pair] follows it before any drift or F (B[bond]
+    /// stages and other sweeps in between do not count), the stages read cyclically: the next
+    /// step's first stages follow the last.
+    #[test]
+    fn sweeps_fill_the_pair_forces_when_a_pair_kick_follows_before_a_drift() {
+        let kicks =
+            |s: &str| kicks_after_sweeps(&dpd_ir::compile_with(s, &Options::default()).unwrap());
+        assert!(kicks(
+            "B[pair](1/2) (B[bond](1/8) A(1/4) B[bond](1/8))^4 O B[pair](1/2)"
+        ));
+        assert!(kicks("A(1/2) B(1/2) O B(1/2) A(1/2)"));
+        assert!(kicks("B A O(1/2) O(1/2)"));
+        assert!(kicks("O B[bond](1/2) B[pair] A B[bond](1/2)"));
+        assert!(!kicks("B(1/2) A(1/2) O A(1/2) B(1/2)"));
+        assert!(!kicks("O B[bond](1/2) A B[pair] B[bond](1/2)"));
+        assert!(!kicks("F(1/2) A F(1/2)"));
     }
 }

@@ -276,6 +276,7 @@ impl SystemBuilder {
             conservative_at: Stamp::default(),
             full: Vec::new(),
             full_at: Stamp::default(),
+            sweeps_fill_forces: false,
             bonded_forces: Vec::new(),
             bonded_at: Stamp::default(),
             overstretch: None,

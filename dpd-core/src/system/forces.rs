@@ -34,6 +34,24 @@ impl System {
         self.counters.force_evaluations += 1;
     }
 
+    /// The pairs at the current positions for a pair sweep. When the scheme kicks with the
+    /// conservative forces after the sweep at the same positions (`O B[pair]`, set by
+    /// [`System::advance`]) and the table is stale, it is filled while those forces are summed
+    /// run by run, as a B would: one pass over the pairs instead of a fill and a pass over the
+    /// table, the same numbers.
+    pub(crate) fn ensure_sweep_pairs(&mut self) {
+        if self.sweeps_fill_forces && self.fills_plainly() {
+            self.ensure_conservative();
+        }
+        self.ensure_pairs();
+    }
+
+    /// Whether pair sweeps fill the pair table with the conservative forces
+    /// ([`System::ensure_sweep_pairs`]).
+    pub(crate) fn set_sweeps_fill_forces(&mut self, on: bool) {
+        self.sweeps_fill_forces = on;
+    }
+
     /// Full forces for an F stage: reused while positions are unchanged, otherwise evaluated
     /// at the current momenta with the noise of `stream` in the current step.
     pub(crate) fn ensure_full(&mut self, stream: u8) {

@@ -85,6 +85,10 @@ pub struct System {
     conservative_at: Stamp,
     full: Vec<Vec3>,
     full_at: Stamp,
+    /// Whether a pair sweep that finds the pair table stale fills it while summing the
+    /// conservative forces, for a scheme that kicks with them after the sweep at the same
+    /// positions ([`System::ensure_sweep_pairs`]).
+    sweeps_fill_forces: bool,
     /// Bonded forces (empty without a topology).
     bonded_forces: Vec<Vec3>,
     bonded_at: Stamp,

@@ -82,7 +82,7 @@ impl System {
     /// pair table evaluated if needed. Counts nothing: a flow that evaluates forces from the
     /// pairs calls [`System::count_force_evaluation`].
     pub(crate) fn pair_state(&mut self, stream: u8) -> PairState<'_> {
-        self.ensure_pairs();
+        self.ensure_sweep_pairs();
         PairState {
             pairs: &self.pairs,
             p: &mut self.p,
