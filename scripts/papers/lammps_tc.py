@@ -9,9 +9,10 @@ without the dpd plugin:
   sweep of the pair updates in LAMMPS's SSA neighbour order, then velocity Verlet).
 
 T_C = <sum_i |grad_i U|^2> / <sum_i lap_i U> is evaluated here from dumped positions (the
-pair potential (a/2)(1 - r)^2 has lap = a (3r - 2) / r per particle and pair), over the last
-`--average` fraction of each run, and T_C - 1 is printed per run and as the mean with its
-standard error over the runs, as `dpd run` reports it.
+pair potential (a/2)(1 - r)^2 has lap = a (3r - 2) / r per particle and pair), and T_K =
+<sum_i |v_i|^2> / (3 N - 3) from the dumped velocities (unit masses, zero total momentum), over
+the last `--average` fraction of each run; T_C - 1 and T_K - 1 are printed per run and as the
+mean with its standard error over the runs, as `dpd run` reports them.
 
     C=~/.cache/dpd-test   # the virtual environments of scripts/test-*.sh
     $C/trajectory/bin/python scripts/papers/lammps_tc.py --lmp $C/lammps/venv/bin/lmp \
@@ -60,25 +61,27 @@ velocity all create 1.0 {seed + 1} mom yes dist gaussian
 {integrator}
 thermo {max(steps, 1)}
 run {equil}
-dump 1 all custom {every} {dump} id x y z
+dump 1 all custom {every} {dump} id x y z vx vy vz
 dump_modify 1 sort id format float %.12g
 run {steps}
 """
 
 
 def frames(path):
-    """(box side, [positions (N, 3)]) of a LAMMPS custom dump with columns id x y z."""
+    """(box side, [positions (N, 3)], [velocities (N, 3)]) of a LAMMPS custom dump with
+    columns id x y z vx vy vz."""
     with open(path) as f:
         lines = f.read().split("\n")
-    out, k, side = [], 0, None
+    out, vs, k, side = [], [], 0, None
     while k < len(lines) and lines[k].startswith("ITEM: TIMESTEP"):
         n = int(lines[k + 3])
         lo, hi = map(float, lines[k + 5].split()[:2])
         side = hi - lo
         rows = np.array([line.split() for line in lines[k + 9:k + 9 + n]], dtype=float)
         out.append(rows[:, 1:4])
+        vs.append(rows[:, 4:7])
         k += 9 + n
-    return side, out
+    return side, out, vs
 
 
 def gradient_and_laplacian(x, side):
@@ -108,13 +111,14 @@ def one_run(args, seed):
     out = subprocess.run([args.lmp, "-in", path, "-log", "none", "-screen", "none"],
                          capture_output=True, text=True, cwd=args.work)
     if out.returncode != 0 or not os.path.exists(dump):
-        return seed, None, out.stdout[-2000:] + out.stderr[-2000:]
-    side, xs = frames(dump)
+        return seed, None, None, out.stdout[-2000:] + out.stderr[-2000:]
+    side, xs, vs = frames(dump)
     os.remove(dump)
     sums = np.array([gradient_and_laplacian(x, side) for x in xs])
     if len(sums) == 0 or not np.all(np.isfinite(sums)):
-        return seed, None, "non-finite or no frames (blow-up)"
-    return seed, sums[:, 0].mean() / sums[:, 1].mean() - 1.0, f"{len(xs)} frames"
+        return seed, None, None, "non-finite or no frames (blow-up)"
+    tk = np.mean([(v * v).sum() / (3 * len(v) - 3) for v in vs])
+    return seed, sums[:, 0].mean() / sums[:, 1].mean() - 1.0, tk - 1.0, f"{len(xs)} frames"
 
 
 def main():
@@ -130,14 +134,16 @@ def main():
     with ThreadPoolExecutor(max_workers=args.jobs) as pool:
         seeds = range(1000, 1000 + 100 * args.runs, 100)
         results = list(pool.map(lambda seed: one_run(args, seed), seeds))
-    errors = []
-    for seed, err, info in results:
-        print(f"seed {seed}: " + (f"T_C - 1 = {100 * err:+.3f} %  ({info})" if err is not None
-                                  else f"failed: {info}"), flush=True)
+    errors, kinetic = [], []
+    for seed, err, tk, info in results:
+        print(f"seed {seed}: " + (f"T_C - 1 = {100 * err:+.3f} %, T_K - 1 = {100 * tk:+.3f} %  ({info})"
+                                  if err is not None else f"failed: {info}"), flush=True)
         if err is not None:
             errors.append(err)
+            kinetic.append(tk)
     if len(errors) >= 2:
         print(protocol.summary(args.scheme, args, errors))
+        print(protocol.summary(args.scheme, args, kinetic, "T_K"))
     if len(errors) < len(results):
         sys.exit(1)
 

@@ -39,12 +39,12 @@ def check(args, extra=()):
             sys.exit(f"{name} = {getattr(args, name[2:])} is out of range: it must be {valid}")
 
 
-def summary(label, args, errors):
+def summary(label, args, errors, quantity="T_C"):
     """`label: T_C - 1 = mean +- standard error % over n runs ...` of the runs' relative errors
-    (at least two: a standard error needs them)."""
+    of `quantity` (at least two: a standard error needs them)."""
     n = len(errors)
     mean = sum(errors) / n
     se = math.sqrt(sum((e - mean) ** 2 for e in errors) / (n - 1) / n)
     return (f"{label} density {args.density:g} gamma {args.gamma:g} dt {args.dt:g}: "
-            f"T_C - 1 = {100 * mean:+.3f} +- {100 * se:.3f} % over {n} runs of {args.time:g} "
+            f"{quantity} - 1 = {100 * mean:+.3f} +- {100 * se:.3f} % over {n} runs of {args.time:g} "
             f"time units (last {100 * args.average:g} %)")
