@@ -38,7 +38,7 @@ impl Exclusions {
 
     /// The ids whose pairs with id `a` are left out.
     #[inline(always)]
-    fn of(&self, a: u32) -> &[u32] {
+    fn partners_of(&self, a: u32) -> &[u32] {
         let (s, e) = (self.start[a as usize], self.start[a as usize + 1]);
         &self.partners[s as usize..e as usize]
     }
@@ -91,7 +91,7 @@ impl Keep for Excluding<'_> {
     }
     #[inline(always)]
     fn with(self, a: u32) -> impl Fn(u32) -> bool {
-        let (left_out, ids) = (self.exclusions.of(self.ids[a as usize]), self.ids);
+        let (left_out, ids) = (self.exclusions.partners_of(self.ids[a as usize]), self.ids);
         move |j| !left_out.contains(&ids[j as usize])
     }
 }
