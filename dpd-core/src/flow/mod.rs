@@ -45,7 +45,8 @@ pub use drift::drift;
 pub use exponential::{exponential_velocity, EtdNoise};
 pub use kick::{full_force, full_force_group, kick, kick_group};
 pub use pair_sweep::{
-    bbk, bbk_update, collide, collision_update, ou, ou_update, trotter, trotter_update, Change,
+    bbk, bbk_update, collide, collision_update, ou, ou_update, ou_updates, trotter, trotter_update,
+    Change,
 };
 
 pub use dpd_ir::SweepOrder;

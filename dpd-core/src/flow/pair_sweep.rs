@@ -210,6 +210,62 @@ pub fn ou_update(gamma: f64, kbt: f64, h: f64, wr: f64, mu: f64, r: f64) -> Chan
     }
 }
 
+/// The O updates of the pairs `0..z.len()` of an engine that owns its pairs (the LAMMPS
+/// plugin's kernels), pushed onto `out` in order: pair `k` with random weight `wr(k)`, inverse
+/// reduced mass `mu(k)` and standard normal `z[k]`. Bitwise [`ou_update`] of each pair; eight
+/// or four pairs at a time in AVX2 registers where the CPU has them and their exponents lie in
+/// `[-40, 0]`, as the O sweep computes them.
+pub fn ou_updates(
+    (gamma, kbt, h): (f64, f64, f64),
+    wr: impl Fn(usize) -> f64 + Copy,
+    mu: impl Fn(usize) -> f64 + Copy,
+    z: &[f64],
+    out: &mut Vec<Change>,
+) {
+    let each = move |k: usize| ou_update(gamma, kbt, h, wr(k), mu(k), z[k]);
+    crate::avx2::with_avx2(
+        #[inline(always)]
+        move || {
+            #[cfg(target_arch = "x86_64")]
+            let done = match Avx2::detect() {
+                Some(avx2) => {
+                    let ou = (gamma, kbt, h);
+                    let done = ou_indexed::<8, F64x4x2>(avx2, ou, (wr, mu), (0, z), out, each);
+                    ou_indexed::<4, F64x4>(avx2, ou, (wr, mu), (done, z), out, each)
+                }
+                None => 0,
+            };
+            #[cfg(not(target_arch = "x86_64"))]
+            let done = 0;
+            out.extend((done..z.len()).map(each));
+        },
+    )
+}
+
+/// [`ou_updates`] of the pairs `from..`, `N` at a time in lanes `V` ([`ou_lanes`]), or by
+/// `each` where an exponent is out of range; returns where the fewer than `N` left over start.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn ou_indexed<const N: usize, V: Vector<N>>(
+    avx2: Avx2,
+    ou: (f64, f64, f64),
+    (wr, mu): (impl Fn(usize) -> f64 + Copy, impl Fn(usize) -> f64 + Copy),
+    (from, z): (usize, &[f64]),
+    out: &mut Vec<Change>,
+    each: impl Fn(usize) -> Change + Copy,
+) -> usize {
+    let mut k = from;
+    while k + N <= z.len() {
+        let lanes = (move |l| wr(k + l), move |l| mu(k + l));
+        match ou_lanes::<N, V>(avx2, ou, lanes, &z[k..k + N]) {
+            Some(changes) => out.extend(changes),
+            None => out.extend((k..k + N).map(each)),
+        }
+        k += N;
+    }
+    k
+}
+
 /// Push the [`ou_change`]s of the pairs of `span` (normals `z`) onto `out`, `N` at a time in
 /// lanes `V` ([`ou_lanes`]), or by `each` (pair by pair) where an exponent is out of range;
 /// return the fewer than `N` pairs left over, with their normals.
@@ -226,7 +282,8 @@ fn ou_groups<'a, const N: usize, V: Vector<N>>(
     let ((groups, rest), groups_z) = (span.chunks_exact(N), z.chunks_exact(N));
     let rest = (rest, groups_z.remainder());
     for (span, z) in groups.zip(groups_z) {
-        match ou_lanes::<N, V>(avx2, ou, span, z) {
+        let (wr, mu) = (|l| span.get(l).pair().wr, |l| span.get(l).mu());
+        match ou_lanes::<N, V>(avx2, ou, (wr, mu), z) {
             Some(changes) => out.extend(changes),
             None => each(span, z, out),
         }
@@ -234,18 +291,19 @@ fn ou_groups<'a, const N: usize, V: Vector<N>>(
     rest
 }
 
-/// The [`ou_change`]s of the first `N` pairs of `span` (normals `z`) at once in lanes `V`,
-/// `None` unless all their exponents lie in `[-40, 0]`.
+/// The [`ou_change`]s of `N` pairs at once in lanes `V`, pair `l` with random weight `wr(l)`,
+/// inverse reduced mass `mu(l)` and normal `z[l]`; `None` unless all their exponents lie in
+/// `[-40, 0]`.
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
 fn ou_lanes<const N: usize, V: Vector<N>>(
     avx2: Avx2,
     (gamma, kbt, h): (f64, f64, f64),
-    span: Span,
+    (wr, mu): (impl Fn(usize) -> f64, impl Fn(usize) -> f64),
     z: &[f64],
 ) -> Option<[Change; N]> {
-    let wr = V::from_fn(avx2, |l| span.get(l).pair().wr);
-    let mu = V::from_fn(avx2, |l| span.get(l).mu());
+    let wr = V::from_fn(avx2, wr);
+    let mu = V::from_fn(avx2, mu);
     let r = V::from_fn(avx2, |l| z[l]);
     let x = ou_exponent(gamma, h, wr, mu);
     // No closure around the lane operations: it would not be compiled with AVX2.
@@ -433,6 +491,31 @@ mod tests {
     use super::*;
     use crate::pairs::Pair;
     use crate::Params;
+
+    /// `ou_updates` is `ou_update` pair by pair, bitwise: runs of every length from 0 to 30
+    /// (groups of eight and four and a rest), exponents inside and beyond `[-40, 0]` (where
+    /// the lanes fall back to the scalar path), zero weights and normals of both signs.
+    #[test]
+    fn ou_updates_are_ou_update_of_each_pair() {
+        let kbt = 1.3;
+        for (n, big) in (0..31).zip([1.0, 1.0, 500.0].into_iter().cycle()) {
+            let (gamma, h) = (4.5 * big, 0.04);
+            let wr = move |k: usize| (k as f64 * 0.37 + n as f64 * 0.11) % 1.0;
+            let mu = move |k: usize| 0.2 + (k as f64 * 0.7) % 2.0;
+            let z: Vec<f64> = (0..n).map(|k| (k as f64 * 1.3 + 0.4).sin() * 3.0).collect();
+            let mut out = Vec::new();
+            ou_updates((gamma, kbt, h), wr, mu, &z, &mut out);
+            let each: Vec<Change> = (0..n)
+                .map(|k| ou_update(gamma, kbt, h, wr(k), mu(k), z[k]))
+                .collect();
+            let bits = |c: &[Change]| -> Vec<[u64; 3]> {
+                c.iter()
+                    .map(|c| [c.slope, c.offset, c.conservative].map(f64::to_bits))
+                    .collect()
+            };
+            assert_eq!(bits(&out), bits(&each), "n = {n}, gamma = {gamma}");
+        }
+    }
 
     #[test]
     fn pairs_in_lanes_are_pairs_one_by_one() {
