@@ -15,8 +15,9 @@ enum { DPD_LAMMPS_OK = 0, DPD_LAMMPS_NULL = 1, DPD_LAMMPS_INDEX = 2, DPD_LAMMPS_
 enum { DPD_LAMMPS_SWEEP_O = 0, DPD_LAMMPS_SWEEP_OB = 1, DPD_LAMMPS_SWEEP_T = 2 };
 
 typedef struct DpdLammpsKernels DpdLammpsKernels;
-/* The pairs within the cutoff that a dpd/soft evaluation found, with their geometry, for the
-   sweeps that follow at the same positions (lammps/kernels/src/record.rs). */
+/* The pairs within the sweeps' cutoff that a dpd/soft evaluation found, with their geometry,
+   by colour of their atom i, for the sweeps that follow at the same positions
+   (lammps/kernels/src/record.rs). */
 typedef struct DpdLammpsRecord DpdLammpsRecord;
 
 /* Per type-pair tables (gamma, rc; dpd/soft's a, rc) hold (ntypes + 1)^2 doubles at
@@ -30,8 +31,8 @@ int dpd_lammps_sweep(const DpdLammpsKernels *kernels, int flow, double h, uint64
                      const void *tag, int tag_bytes, const int *type, const double *soft_a,
                      const double *soft_rc, double *virial);
 int dpd_lammps_sweep_recorded(const DpdLammpsKernels *kernels, int flow, double h, uint64_t seed,
-                              uint64_t step, int stream, int reverse, size_t ncolour,
-                              const int *colour, const DpdLammpsRecord *record, size_t natoms,
+                              uint64_t step, int stream, int reverse, int colour,
+                              const DpdLammpsRecord *record, size_t natoms,
                               const double *x, double *v, const double *inv_mass,
                               const void *tag, int tag_bytes, const int *type,
                               const double *soft_a, const double *soft_rc, double *virial);
@@ -45,7 +46,8 @@ int dpd_lammps_soft_forces(int ntypes, const double *a, const double *rc, const 
                            const int *const *firstneigh, int nall, const double *x,
                            const int *type, double *f, double *energy, double *virial,
                            double *eatom, double *vatom, DpdLammpsRecord *record);
-DpdLammpsRecord *dpd_lammps_record_new(void);
+DpdLammpsRecord *dpd_lammps_record_new(const DpdLammpsKernels *kernels);
+int dpd_lammps_record_colours(DpdLammpsRecord *record, size_t natoms, const unsigned char *colour);
 void dpd_lammps_record_free(DpdLammpsRecord *record);
 
 #ifdef __cplusplus

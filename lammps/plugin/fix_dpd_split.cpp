@@ -203,9 +203,9 @@ std::string positive_friction(Pair *pair, const Thermostat &t)
 FixDPDSplit::FixDPDSplit(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), scheme(nullptr), kt(0.0), exponent(2.0), max_rc(0.0), seed(0),
     exclusive(true), tally_end(true), kernels(nullptr), list(nullptr), soft(nullptr),
-    recorder(nullptr), record_seen(-1), record_moves(-1), record_build(-1), split(0),
+    recorder(nullptr), pair_record(nullptr), record_seen(-1), record_moves(-1), record_build(-1), split(0),
     last_drift(-1), forces_stale(false), ghosts_stale(false), step_eflag(0), step_vflag(0),
-    epoch(0), full_epoch(-1), moves(0), colour_build(-1), pairs_build(-1), comm_mode(COMM_V), full_virial{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}
+    epoch(0), full_epoch(-1), moves(0), colour_build(-1), colours_used(false), colour_epoch(0), pairs_epoch(-1), comm_mode(COMM_V), full_virial{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}
 {
   const char *usage = "fix ID group dpd/split SCHEME kT gamma r_c seed [exponent s] "
                       "[coeff I J gamma r_c] ... [exclusive yes|no] [tally end|evaluation]";
@@ -341,12 +341,13 @@ FixDPDSplit::FixDPDSplit(LAMMPS *lmp, int narg, char **arg) :
 
 FixDPDSplit::~FixDPDSplit()
 {
+  dpd_lammps_record_free(pair_record);
   dpd_lammps_free(kernels);
 }
 
 int FixDPDSplit::setmask()
 {
-  return INITIAL_INTEGRATE | FINAL_INTEGRATE;
+  return INITIAL_INTEGRATE | FINAL_INTEGRATE | PRE_FORCE;
 }
 
 void FixDPDSplit::init()
@@ -369,7 +370,12 @@ void FixDPDSplit::init()
   check_groups();
   // Sweeps at the positions of dpd/soft's last evaluation take its in-range pairs.
   recorder = any_stage(*scheme, needs_ghosts) ? dynamic_cast<PairDPDSoft *>(force->pair) : nullptr;
-  if (recorder) recorder->record_pairs();
+  if (recorder) {
+    if (!pair_record) pair_record = dpd_lammps_record_new(kernels);
+    recorder->record_pairs(pair_record);
+  }
+  // The neighbour-list build count restarts at each run's setup: colour again.
+  colour_build = -1;
   neighbor->add_request(this);
 }
 
@@ -733,13 +739,20 @@ void FixDPDSplit::prepare_atoms()
 }
 
 /// The owned atoms of the neighbour list, bucketed by the octant of the subdomain holding them,
-/// kept until the next neighbour-list build (or, in a deforming box, recomputed every time).
-/// An atom's colour is that of its position at the build: it has moved at most skin/2 since,
-/// which the size limit of the staged sweep already allows for (see the header of this file).
+/// and given to dpd/soft's record, whose evaluations bucket their pairs by them. Made again at
+/// each call after a neighbour-list build until a sweep or F stage has used them (so from the
+/// positions of the first such stage, or of the evaluation whose record it uses), then kept
+/// until the next build (in a deforming box, made at every call). An atom has moved at most
+/// skin/2 since the build, which the size limit of the staged sweep already allows for (see
+/// the header of this file).
 void FixDPDSplit::colour_atoms_of_list()
 {
-  if (colour_build == neighbor->ncalls && !domain->box_change) return;
+  if (colour_build == neighbor->ncalls && colours_used && !domain->box_change) return;
   colour_build = neighbor->ncalls;
+  colours_used = false;
+  ++colour_epoch;
+  int nall = atom->nlocal + atom->nghost;
+  atom_colour.assign(nall, 8);
   double **x = atom->x;
   // In a triclinic box the octants are those of the subdomain in lamda coordinates.
   bool tilted = domain->triclinic;
@@ -758,7 +771,21 @@ void FixDPDSplit::colour_atoms_of_list()
     }
     int colour = (p[0] >= mid[0]) | ((p[1] >= mid[1]) << 1) | ((p[2] >= mid[2]) << 2);
     colour_atoms[colour].push_back(i);
+    atom_colour[i] = colour;
   }
+  if (pair_record)
+    check_status(dpd_lammps_record_colours(pair_record, nall, atom_colour.data()), "colours");
+}
+
+/// Before LAMMPS's force evaluations: colours for dpd/soft's record.
+void FixDPDSplit::setup_pre_force(int)
+{
+  if (recorder) colour_atoms_of_list();
+}
+
+void FixDPDSplit::pre_force(int)
+{
+  if (recorder) colour_atoms_of_list();
 }
 
 /// The listed pairs of each colour's atoms, in the list's order, less those of special factor 0
@@ -766,8 +793,9 @@ void FixDPDSplit::colour_atoms_of_list()
 void FixDPDSplit::colour_pairs_of_list()
 {
   colour_atoms_of_list();
-  if (pairs_build == colour_build && !domain->box_change) return;
-  pairs_build = colour_build;
+  colours_used = true;
+  if (pairs_epoch == colour_epoch) return;
+  pairs_epoch = colour_epoch;
   for (int c = 0; c < 8; ++c) {
     std::vector<int> &pairs = colour_pairs[c];
     pairs.clear();
@@ -798,7 +826,7 @@ void FixDPDSplit::sweep(const Stage &stage)
   // one, else from the neighbour list.
   bool from_record = recorded();
   if (from_record)
-    colour_atoms_of_list();
+    colours_used = true;
   else
     colour_pairs_of_list();
   int flow = stage.flow == DpdSplit::FLOW_O  ? DPD_LAMMPS_SWEEP_O
@@ -820,10 +848,9 @@ void FixDPDSplit::sweep(const Stage &stage)
     const double *soft_rc = trotter ? soft->cutoffs() : nullptr;
     uint64_t step = (uint64_t) update->ntimestep;
     if (from_record) {
-      const std::vector<int> &atoms = colour_atoms[colour];
       check_status(dpd_lammps_sweep_recorded(kernels, flow, h, seed, step, stage.stream,
-                                             stage.reverse, atoms.size(), atoms.data(),
-                                             recorder->record(), nall, &atom->x[0][0],
+                                             stage.reverse, colour, pair_record, nall,
+                                             &atom->x[0][0],
                                              &atom->v[0][0], inv_mass.data(), atom->tag,
                                              sizeof(tagint), atom->type, soft_a, soft_rc,
                                              vflag_global ? impulses : nullptr),
@@ -919,6 +946,7 @@ void FixDPDSplit::refresh(int eflag, int vflag)
   ++epoch;
   int nall = atom->nlocal + (force->newton ? atom->nghost : 0);
   memset(&atom->f[0][0], 0, sizeof(double) * 3 * nall);
+  if (recorder) colour_atoms_of_list();
   if (force->pair && force->pair->compute_flag) force->pair->compute(eflag, vflag);
   if (atom->molecular) {
     if (force->bond) force->bond->compute(eflag, vflag);
@@ -939,7 +967,9 @@ void FixDPDSplit::note_evaluation()
   if (!recorder || recorder->recordings() == record_seen) return;
   record_seen = recorder->recordings();
   record_moves = moves;
-  record_build = neighbor->ncalls;
+  // The record is bucketed by the colours of this build only if they were given before the
+  // evaluation (colour_atoms_of_list, which gives them, has run at this build).
+  record_build = colour_build == neighbor->ncalls ? neighbor->ncalls : -1;
 }
 
 /// Whether dpd/soft's record is of the current positions and atom order.

@@ -20,6 +20,8 @@ class FixDPDSplit : public Fix {
   void init() override;
   void init_list(int, class NeighList *) override;
   void setup(int) override;
+  void setup_pre_force(int) override;
+  void pre_force(int) override;
   void initial_integrate(int) override;
   void final_integrate() override;
   int pack_forward_comm(int, int *, double *, int, int *) override;
@@ -57,11 +59,13 @@ class FixDPDSplit : public Fix {
   class NeighList *list;
   /// The conservative force of T stages (null when the scheme has none), set by init().
   const class PairDPDSoft *soft;
-  /// The pair style when it is dpd/soft and the scheme sweeps: it records the pairs within its
-  /// cutoff at each evaluation; `record_seen` is its count of recordings when the fix last
-  /// looked, and the last recording was at drift count `record_moves` and neighbour-list build
-  /// `record_build` (see `recorded()`).
+  /// The pair style when it is dpd/soft and the scheme sweeps: it records the pairs within the
+  /// fix's cutoff at each evaluation into `pair_record`, by the colours the fix gives it
+  /// (`colour_atoms_of_list`, before each evaluation); `record_seen` is its count of
+  /// recordings when the fix last looked, and the last recording was at drift count
+  /// `record_moves` and neighbour-list build `record_build` (see `recorded()`).
   class PairDPDSoft *recorder;
+  DpdLammpsRecord *pair_record;
   long long record_seen, record_moves;
   bigint record_build;
 
@@ -91,8 +95,13 @@ class FixDPDSplit : public Fix {
   GroupForces pair_forces, bonded_forces;
   /// Scratch: all forces on the owned atoms, kept across a bonded evaluation.
   std::vector<double> saved_forces;
-  /// The neighbour-list build (neighbor->ncalls) the colour buckets were made from.
+  /// The neighbour-list build (neighbor->ncalls) the colour buckets were made from, whether a
+  /// sweep or F stage has used them since, and a count of the times they were made.
   bigint colour_build;
+  bool colours_used;
+  long long colour_epoch;
+  /// The colour of each atom at that build (owned atoms of the list; 8 for the others).
+  std::vector<unsigned char> atom_colour;
   /// What the pack/unpack functions move: velocities forward, velocity changes or forces back.
   enum { COMM_V, COMM_DV, COMM_F } comm_mode;
 
@@ -102,9 +111,10 @@ class FixDPDSplit : public Fix {
   /// The virial of the F pair forces in `full` (xx, yy, zz, xy, xz, yz).
   double full_virial[6];
   /// Per colour, the owned atoms (in the neighbour list's order) and their listed pairs; the
-  /// pairs are bucketed only when a sweep or F stage needs them (`pairs_build`).
+  /// pairs are bucketed only when a sweep or F stage needs them (`pairs_epoch`: the
+  /// `colour_epoch` they were made at).
   std::vector<int> colour_atoms[8], colour_pairs[8];
-  bigint pairs_build;
+  long long pairs_epoch;
   /// Per stage (1-based; 0 unused): whether a compute asked for the velocities after it, and
   /// their local kinetic tensor at the last step.
   std::vector<char> kinetic_wanted;

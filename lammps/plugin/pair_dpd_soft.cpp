@@ -57,8 +57,7 @@ double cutoff(Error *error, const char *text)
 }    // namespace
 
 PairDPDSoft::PairDPDSoft(LAMMPS *lmp) :
-    Pair(lmp), cut_global(0.0), special{1.0, 1.0, 1.0, 1.0}, recording(false),
-    pair_record(nullptr), recorded(0)
+    Pair(lmp), cut_global(0.0), special{1.0, 1.0, 1.0, 1.0}, pair_record(nullptr), recorded(0)
 {
   // The kernels tally the virial pair by pair; there is no single(), restart or data output.
   no_virial_fdotr_compute = 1;
@@ -69,7 +68,6 @@ PairDPDSoft::PairDPDSoft(LAMMPS *lmp) :
 
 PairDPDSoft::~PairDPDSoft()
 {
-  dpd_lammps_record_free(pair_record);
   if (allocated) {
     memory->destroy(setflag);
     memory->destroy(cutsq);
@@ -132,7 +130,7 @@ void PairDPDSoft::init_style()
   for (int k = 0; k < 4; ++k) special[k] = force->special_lj[k];
   neighbor->add_request(this);
   // Until a fix dpd/split of this run asks again (its init() comes after this one).
-  recording = false;
+  pair_record = nullptr;
 }
 
 double PairDPDSoft::init_one(int i, int j)
@@ -149,16 +147,15 @@ void PairDPDSoft::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
   int nall = atom->nlocal + atom->nghost;
-  if (recording && !pair_record) pair_record = dpd_lammps_record_new();
   int status = dpd_lammps_soft_forces(
       atom->ntypes, a.data(), cut.data(), special, list->inum, list->ilist, list->numneigh,
       list->firstneigh, nall, nall ? atom->x[0] : nullptr, atom->type,
       nall ? atom->f[0] : nullptr, eflag_global ? &eng_vdwl : nullptr,
       vflag_global ? virial : nullptr, eflag_atom ? eatom : nullptr,
-      vflag_atom && nall ? vatom[0] : nullptr, recording ? pair_record : nullptr);
+      vflag_atom && nall ? vatom[0] : nullptr, pair_record);
   if (status != DPD_LAMMPS_OK)
     error->one(FLERR, "pair dpd/soft: the kernels refused the neighbour list (status {}: {})",
                status,
                status == DPD_LAMMPS_NULL ? "a missing array" : "an atom index or type out of range");
-  if (recording) ++recorded;
+  if (pair_record) ++recorded;
 }

@@ -23,13 +23,13 @@ class PairDPDSoft : public Pair {
   /// has run: fix dpd/split's T stages include this force in their exact pair update.
   const double *strengths() const { return a.data(); }
   const double *cutoffs() const { return cut.data(); }
-  /// Record the pairs within the cutoff (less those of special factor 0, which get no force and
-  /// which the fix's sweeps exclude) of every evaluation of this run, with their geometry
-  /// (fix dpd/split asks for it in its init(), after this style's init_style() has reset it):
-  /// the fix's sweeps at the positions of the last evaluation take them from `record()` instead
-  /// of passing over the neighbour list. `recordings()` counts the evaluations recorded.
-  void record_pairs() { recording = true; }
-  const DpdLammpsRecord *record() const { return pair_record; }
+  /// Record in `record` (fix dpd/split's, which colours its atoms) the pairs within the fix's
+  /// cutoff (less those of special factor 0, which get no force and which the fix's sweeps
+  /// exclude) of every evaluation of this run, with their geometry (the fix asks for it in its
+  /// init(), after this style's init_style() has reset it): the fix's sweeps at the positions
+  /// of the last evaluation take them from the record instead of passing over the neighbour
+  /// list. `recordings()` counts the evaluations recorded.
+  void record_pairs(DpdLammpsRecord *record) { pair_record = record; }
   long long recordings() const { return recorded; }
 
  private:
@@ -39,7 +39,7 @@ class PairDPDSoft : public Pair {
   std::vector<double> a, cut;
   /// The special-bond factors of the current run (force->special_lj).
   double special[4];
-  bool recording;
+  /// The record of the fix that asked (not owned), null when none did.
   DpdLammpsRecord *pair_record;
   long long recorded;
 

@@ -4,7 +4,8 @@
 use crate::record::PairRecord;
 use crate::soft::SoftStyle;
 use crate::{
-    Atoms, Conservative, Kernels, SweepFlow, Tags, DPD_LAMMPS_FLOW, DPD_LAMMPS_NULL, DPD_LAMMPS_TAG,
+    Atoms, Conservative, Kernels, SweepFlow, Tags, DPD_LAMMPS_FLOW, DPD_LAMMPS_INDEX,
+    DPD_LAMMPS_NULL, DPD_LAMMPS_TAG,
 };
 use std::ffi::{c_char, c_int, c_void};
 
@@ -235,15 +236,16 @@ pub unsafe extern "C" fn dpd_lammps_sweep(
     }
 }
 
-/// [`dpd_lammps_sweep`] over the pairs that `record` holds of the `ncolour` atoms `colour` (atom
-/// indices), in that order, in place of a pair list ([`Kernels::sweep_recorded`]): `record`
-/// must come from a `dpd/soft` evaluation ([`crate::soft::dpd_lammps_soft_forces`]) at the
-/// current positions of these `natoms` atoms. Returns `DPD_LAMMPS_INDEX` if it is not of
-/// `natoms` atoms or an index of `colour` lies outside them, else as [`dpd_lammps_sweep`].
+/// [`dpd_lammps_sweep`] over the pairs that `record` holds of the atoms of colour `colour` (0
+/// to 7), in place of a pair list ([`Kernels::sweep_recorded`]): `record` must come from a
+/// `dpd/soft` evaluation ([`crate::soft::dpd_lammps_soft_forces`]) at the current positions of
+/// these `natoms` atoms, with their colours. Returns `DPD_LAMMPS_INDEX` if it is not complete,
+/// not of `natoms` atoms or of these kernels' number of types, or `colour` is not 0 to 7, else
+/// as [`dpd_lammps_sweep`].
 ///
 /// # Safety
-/// As for [`dpd_lammps_sweep`], with `colour` pointing to `ncolour` ints (null when 0) in place
-/// of `pairs`, and `record` null or from `dpd_lammps_record_new`, not written during the call.
+/// As for [`dpd_lammps_sweep`], without `pairs`, and with `record` null or from
+/// `dpd_lammps_record_new`, not written during the call.
 #[no_mangle]
 pub unsafe extern "C" fn dpd_lammps_sweep_recorded(
     kernels: *const Kernels,
@@ -253,8 +255,7 @@ pub unsafe extern "C" fn dpd_lammps_sweep_recorded(
     step: u64,
     stream: c_int,
     reverse: c_int,
-    ncolour: usize,
-    colour: *const c_int,
+    colour: c_int,
     record: *const PairRecord,
     natoms: usize,
     x: *const f64,
@@ -268,9 +269,11 @@ pub unsafe extern "C" fn dpd_lammps_sweep_recorded(
     virial: *mut f64,
 ) -> c_int {
     // SAFETY: the contract.
-    let (colour, record) = unsafe { (slice(colour, ncolour), record.as_ref()) };
-    let (Some(colour), Some(record)) = (colour, record) else {
+    let Some(record) = (unsafe { record.as_ref() }) else {
         return DPD_LAMMPS_NULL;
+    };
+    let Ok(colour) = usize::try_from(colour) else {
+        return DPD_LAMMPS_INDEX;
     };
     // SAFETY: the contract.
     unsafe {

@@ -24,11 +24,11 @@ pub mod record;
 pub mod soft;
 
 pub use atoms::{Atoms, Tags};
-use dpd_core::flow::{bbk_update, ou_update, trotter_update, Change};
+use dpd_core::flow::{bbk_update, ou_update, ou_updates, trotter_update, Change};
 use dpd_core::force::full_pair_force;
 use dpd_core::rng::pair_normal;
 use dpd_core::Params;
-use record::PairRecord;
+use record::{Near, PairRecord};
 use soft::SoftStyle;
 use std::ffi::c_int;
 
@@ -68,17 +68,6 @@ struct Coefficients {
     rc: f64,
 }
 
-/// A pair within its cutoff: atoms, unit vector `e_ij`, distance, weight `1 - r/r_c` and
-/// coefficients.
-struct Near {
-    i: usize,
-    j: usize,
-    e: [f64; 3],
-    r: f64,
-    w: f64,
-    c: Coefficients,
-}
-
 /// The sweep parameters of one fix: `k_B T`, the weight exponent, and per pair of the
 /// `ntypes` atom types its [`Coefficients`], at `I * (ntypes + 1) + J` (row and column 0
 /// unused, as LAMMPS's type arrays).
@@ -90,6 +79,9 @@ pub struct Kernels {
     pairs: Vec<Coefficients>,
     /// Whether some pair has friction (else O and Ob do nothing).
     friction: bool,
+    /// The friction of every type pair when it is the same for all (then O computes the pair
+    /// updates several at a time, [`ou_updates`]).
+    uniform_gamma: Option<f64>,
 }
 
 /// The conservative force a T sweep includes: the `dpd/soft` coefficients.
@@ -150,12 +142,15 @@ impl Kernels {
             }
         }
         let friction = pairs.iter().any(|c| c.gamma > 0.0);
+        let first = pairs[n + 1].gamma;
+        let uniform = (1..n).all(|i| (1..n).all(|j| pairs[i * n + j].gamma == first));
         Ok(Kernels {
             kbt,
             weights: weights.expect("ntypes >= 1"),
             ntypes,
             pairs,
             friction,
+            uniform_gamma: uniform.then_some(first),
         })
     }
 
@@ -175,16 +170,27 @@ impl Kernels {
         self.ntypes
     }
 
+    /// The cutoff of each type-pair slot (see [`Kernels`]).
+    pub fn cutoffs(&self) -> Vec<f64> {
+        self.pairs.iter().map(|c| c.rc).collect()
+    }
+
+    /// The type-pair slot of the pair of atoms `i`, `j` (types checked by [`Atoms::check`]).
+    #[inline(always)]
+    fn slot(&self, atoms: &Atoms, i: usize, j: usize) -> usize {
+        atoms.type_of(i) * (self.ntypes + 1) + atoms.type_of(j)
+    }
+
     /// The coefficients of the pair of atoms `i`, `j` (types checked by [`Atoms::check`]).
     #[inline(always)]
     fn coefficients(&self, atoms: &Atoms, i: usize, j: usize) -> Coefficients {
-        self.pairs[atoms.type_of(i) * (self.ntypes + 1) + atoms.type_of(j)]
+        self.pairs[self.slot(atoms, i, j)]
     }
 
     /// The update of the pair `p` with inverse reduced mass `mu`, standard normal `z` and
     /// conservative pair force `f` (used by T only).
     fn change(&self, flow: SweepFlow, h: f64, p: &Near, mu: f64, z: f64, f: f64) -> Change {
-        let (c, wr) = (p.c, self.weights.w_r(p.w));
+        let (c, wr) = (self.pairs[p.slot as usize], self.weights.w_r(p.w));
         match flow {
             SweepFlow::Ou => ou_update(c.gamma, self.kbt, h, wr, mu, z),
             SweepFlow::Bbk => bbk_update(c.gamma, c.sigma, h, h.max(0.0).sqrt(), wr, mu, z),
@@ -234,13 +240,23 @@ impl Kernels {
         // In four passes, so that only the last is a chain of dependent updates: the pairs
         // within their cutoff and their geometry; their normals, several pairs at a time
         // (dpd-core's `pair_normals`, bitwise its `pair_normal`); their changes, each from its
-        // own geometry and noise; then the velocity updates, one after the other in order.
+        // own geometry and noise (O with one friction several pairs at a time, dpd-core's
+        // `ou_updates`, bitwise its `ou_update`); then the velocity updates, one after the
+        // other in order.
         let mut near = Vec::with_capacity(pairs.len());
         for &[i, j] in pairs {
             let (i, j) = (i as usize, j as usize);
-            let c = self.coefficients(atoms, i, j);
-            if let Some((e, r, w)) = Self::geometry(atoms, i, j, c.rc) {
-                near.push(Near { i, j, e, r, w, c });
+            let slot = self.slot(atoms, i, j);
+            if let Some((e, r, w)) = Self::geometry(atoms, i, j, self.pairs[slot].rc) {
+                let (i, j, slot) = (i as u32, j as u32, slot as u32);
+                near.push(Near {
+                    i,
+                    j,
+                    e,
+                    r,
+                    w,
+                    slot,
+                });
             }
         }
         self.apply(flow, h, key, &near, reverse, atoms, v, conservative, virial);
@@ -248,16 +264,18 @@ impl Kernels {
     }
 
     /// [`Kernels::sweep`] over the pairs of `record` (a `dpd/soft` evaluation at the current
-    /// positions, [`PairRecord`]) of the atoms `colour`, in that order: the same updates, bit
-    /// for bit, as a sweep over the neighbour list's pairs of those atoms, without passing over
-    /// the list. Returns `DPD_LAMMPS_INDEX` if the record is not of these atoms.
+    /// positions, [`PairRecord`]) of the atoms of colour `colour`: the same updates, bit for
+    /// bit, as a sweep over the neighbour list's pairs of those atoms in the list's order,
+    /// without passing over the list or the pairs. Returns `DPD_LAMMPS_INDEX` if the record is
+    /// not complete, not of these atoms or of kernels of another number of types, or `colour`
+    /// is not 0 to 7.
     #[allow(clippy::too_many_arguments)]
     pub fn sweep_recorded(
         &self,
         flow: SweepFlow,
         h: f64,
         key: (u64, u64, u8),
-        (colour, record): (&[c_int], &PairRecord),
+        (colour, record): (usize, &PairRecord),
         reverse: bool,
         atoms: &Atoms,
         v: &mut [f64],
@@ -268,7 +286,7 @@ impl Kernels {
         if status != DPD_LAMMPS_OK {
             return status;
         }
-        let Some(recorded) = record.pairs_of(colour, atoms.len()) else {
+        let Some(near) = record.bucket(colour, atoms.len(), self.ntypes) else {
             return DPD_LAMMPS_INDEX;
         };
         let conservative = match self.style(flow, conservative) {
@@ -276,17 +294,7 @@ impl Kernels {
             Ok(None) => return DPD_LAMMPS_OK,
             Err(status) => return status,
         };
-        let mut near = Vec::with_capacity(recorded.iter().map(|p| p.len()).sum());
-        for &p in recorded.iter().copied().flatten() {
-            let (i, j) = (p.i as usize, p.j as usize);
-            let c = self.coefficients(atoms, i, j);
-            // The record holds the pairs within the pair style's cutoff, at least r_c.
-            if p.r2 < c.rc * c.rc {
-                let (e, r, w) = (p.e, p.r, 1.0 - p.r / c.rc);
-                near.push(Near { i, j, e, r, w, c });
-            }
-        }
-        self.apply(flow, h, key, &near, reverse, atoms, v, conservative, virial);
+        self.apply(flow, h, key, near, reverse, atoms, v, conservative, virial);
         DPD_LAMMPS_OK
     }
 
@@ -308,7 +316,8 @@ impl Kernels {
         }
     }
 
-    /// The last three passes of a sweep over the pairs `near` within their cutoff.
+    /// The last three passes of a sweep over the pairs `near` within their cutoff (indices
+    /// below `atoms.len()`, checked with `v` by [`Atoms::check`]).
     #[allow(clippy::too_many_arguments)]
     fn apply(
         &self,
@@ -323,34 +332,41 @@ impl Kernels {
         mut virial: Option<&mut [f64; 6]>,
     ) {
         let mut z = vec![0.0; near.len()];
-        dpd_core::rng::pair_normals(
-            seed,
-            step,
-            stream,
-            |k| (atoms.tag.key(near[k].i), atoms.tag.key(near[k].j)),
-            &mut z,
-        );
-        let changes: Vec<Change> = near
-            .iter()
-            .zip(&z)
-            .map(|(p, &z)| {
+        let tags = |p: &Near| (atoms.tag.key(p.i as usize), atoms.tag.key(p.j as usize));
+        dpd_core::rng::pair_normals(seed, step, stream, |k| tags(&near[k]), &mut z);
+        let inv_mass = atoms.inv_mass;
+        let mu = |p: &Near| inv_mass[p.i as usize] + inv_mass[p.j as usize];
+        let mut changes = Vec::with_capacity(near.len());
+        match (flow, self.uniform_gamma) {
+            (SweepFlow::Ou, Some(gamma)) => ou_updates(
+                (gamma, self.kbt, h),
+                |k| self.weights.w_r(near[k].w),
+                |k| mu(&near[k]),
+                &z,
+                &mut changes,
+            ),
+            _ => changes.extend(near.iter().zip(&z).map(|(p, &z)| {
                 let f = conservative.map_or(0.0, |s| {
-                    s.pair_force_of_types(atoms.type_of(p.i), atoms.type_of(p.j), p.r)
+                    let (ti, tj) = (atoms.type_of(p.i as usize), atoms.type_of(p.j as usize));
+                    s.pair_force_of_types(ti, tj, p.r)
                 });
-                let mu = atoms.inv_mass[p.i] + atoms.inv_mass[p.j];
-                self.change(flow, h, p, mu, z, f)
-            })
-            .collect();
+                self.change(flow, h, p, mu(p), z, f)
+            })),
+        }
+        // The velocities as one `[f64; 3]` per atom: one bounds check per atom and pair.
+        let n = v.len() / 3;
+        // SAFETY: `[f64; 3]` has the layout of three consecutive `f64`; the first `3 n` values
+        // of `v`, borrowed mutably here and not used otherwise while `v3` lives.
+        let v3 = unsafe { std::slice::from_raw_parts_mut(v.as_mut_ptr().cast::<[f64; 3]>(), n) };
         let mut apply = |(p, change): (&Near, &Change)| {
-            let (i, j, e) = (p.i, p.j, p.e);
-            let (mi, mj) = (atoms.inv_mass[i], atoms.inv_mass[j]);
-            let u = (0..3)
-                .map(|k| e[k] * (v[3 * i + k] - v[3 * j + k]))
-                .sum::<f64>();
+            let (i, j, e) = (p.i as usize, p.j as usize, p.e);
+            let (mi, mj) = (inv_mass[i], inv_mass[j]);
+            let (vi, vj) = (v3[i], v3[j]);
+            let u = (0..3).map(|k| e[k] * (vi[k] - vj[k])).sum::<f64>();
             let impulse = change.slope * u + change.offset;
             for k in 0..3 {
-                v[3 * i + k] += impulse * e[k] * mi;
-                v[3 * j + k] -= impulse * e[k] * mj;
+                v3[i][k] += impulse * e[k] * mi;
+                v3[j][k] -= impulse * e[k] * mj;
             }
             if let Some(virial) = virial.as_deref_mut() {
                 add_virial(virial, atoms, i, j, impulse - change.conservative, e);
@@ -819,9 +835,19 @@ mod tests {
 
     /// The four-pass sweep against the plain loop it replaces (each pair in turn: geometry,
     /// `pair_normal`, change, update), bitwise, for every flow, both orders and two types with
-    /// their own friction and cutoff, on 60 atoms in a cube of side 2 (every pair listed).
+    /// their own cutoff and their own friction or one friction (where O computes its updates
+    /// several at a time), on 60 atoms in a cube of side 2 (every pair listed).
     #[test]
     fn the_sweep_is_bitwise_the_pair_by_pair_loop() {
+        for gamma in [
+            [0.0, 0.0, 0.0, 0.0, 4.5, 9.0, 0.0, 9.0, 20.0],
+            [0.0, 0.0, 0.0, 0.0, 4.5, 4.5, 0.0, 4.5, 4.5],
+        ] {
+            sweep_and_pair_by_pair_loop(&gamma);
+        }
+    }
+
+    fn sweep_and_pair_by_pair_loop(gamma: &[f64]) {
         let n: usize = 60;
         let scene = random_scene(n, 12345, |k| 1000 - 7 * k);
         let (inv_mass, tag, types) = (&scene.inv_mass, &scene.tag, &scene.types);
@@ -830,9 +856,9 @@ mod tests {
         let pairs: Vec<[c_int; 2]> = (0..n as c_int)
             .flat_map(|i| (i + 1..n as c_int).map(move |j| [i, j]))
             .collect();
-        let gamma = [0.0, 0.0, 0.0, 0.0, 4.5, 9.0, 0.0, 9.0, 20.0];
         let rc = [0.0, 0.0, 0.0, 0.0, 1.0, 0.9, 0.0, 0.9, 1.1];
-        let k = Kernels::new(1.0, 2.0, 2, &gamma, &rc).unwrap();
+        let k = Kernels::new(1.0, 2.0, 2, gamma, &rc).unwrap();
+        assert_eq!(k.uniform_gamma.is_some(), gamma[5] == gamma[4]);
         let a = [0.0, 0.0, 0.0, 0.0, 25.0, 40.0, 0.0, 40.0, 25.0];
         let style = SoftStyle::new(2, &a, &rc, [1.0; 4]).unwrap();
         for flow in [SweepFlow::Ou, SweepFlow::Bbk, SweepFlow::Trotter] {
@@ -864,7 +890,15 @@ mod tests {
                     let f = style.map_or(0.0, |s| {
                         s.pair_force_of_types(types[i] as usize, types[j] as usize, r)
                     });
-                    let near = Near { i, j, e, r, w, c };
+                    let (slot, ij) = (k.slot(&atoms, i, j) as u32, (i as u32, j as u32));
+                    let near = Near {
+                        i: ij.0,
+                        j: ij.1,
+                        e,
+                        r,
+                        w,
+                        slot,
+                    };
                     let ch = k.change(flow, 0.07, &near, inv_mass[i] + inv_mass[j], z, f);
                     let u = (0..3)
                         .map(|d| e[d] * (slow[3 * i + d] - slow[3 * j + d]))
@@ -891,8 +925,9 @@ mod tests {
     /// A sweep over the pairs a `dpd/soft` evaluation recorded equals, bit for bit, the sweep
     /// over the neighbour list's pairs of the same atoms, for every flow, both orders and two
     /// colours visited one after the other (60 atoms in a cube of side 2, every pair listed
-    /// once, two types whose pair-style cutoffs reach beyond the sweep's r_c); a record of
-    /// other atoms, or a colour naming an atom outside them, is refused with nothing changed.
+    /// once, two types whose pair-style cutoffs reach beyond the sweep's r_c or equal it); a
+    /// record of other atoms, with an atom uncoloured, or of kernels of other types, and a
+    /// colour beyond 7, are refused with nothing changed.
     #[test]
     fn a_sweep_over_recorded_pairs_is_bitwise_the_sweep_over_the_list() {
         let n: usize = 60;
@@ -906,26 +941,31 @@ mod tests {
         let a = [0.0, 0.0, 0.0, 0.0, 25.0, 40.0, 0.0, 40.0, 25.0];
         let soft_rc = [0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 1.2];
         let style = SoftStyle::new(2, &a, &soft_rc, [1.0; 4]).unwrap();
-        // The list: atom i's neighbours are the atoms after it; colours: even and odd atoms,
-        // each visited from the last atom down, as a list need not be in index order.
+        // The list: atom i's neighbours are the atoms after it, the atoms from the last down,
+        // as a list need not be in index order; colours: even and odd atoms.
         let neighbours = |i: usize| (i as c_int + 1..n as c_int).collect::<Vec<_>>();
         let colours: [Vec<c_int>; 2] =
             [0, 1].map(|c| (0..n as c_int).rev().filter(|i| i % 2 == c).collect());
-        let mut record = PairRecord::default();
-        record.clear(n);
-        let mut f = vec![0.0; 3 * n];
-        for i in 0..n {
-            let status = style.atom(
-                i,
-                &neighbours(i),
-                x,
-                types,
-                &mut f,
-                &mut soft::Tally::default(),
-                Some(&mut record),
-            );
-            assert_eq!(status, DPD_LAMMPS_OK);
-        }
+        let evaluate = |record: &mut PairRecord, colour: &[u8]| {
+            record.colour_atoms(colour);
+            record.clear(n);
+            let mut f = vec![0.0; 3 * n];
+            for i in (0..n).rev() {
+                let status = style.atom(
+                    i,
+                    &neighbours(i),
+                    x,
+                    types,
+                    &mut f,
+                    &mut soft::Tally::default(),
+                    Some(record),
+                );
+                assert_eq!(status, DPD_LAMMPS_OK);
+            }
+        };
+        let parity: Vec<u8> = (0..n).map(|k| (k % 2) as u8).collect();
+        let mut record = PairRecord::new(&k);
+        evaluate(&mut record, &parity);
         for flow in [SweepFlow::Ou, SweepFlow::Bbk, SweepFlow::Trotter] {
             let conservative = (flow == SweepFlow::Trotter).then_some(&style);
             for reverse in [false, true] {
@@ -952,7 +992,7 @@ mod tests {
                         flow,
                         0.05,
                         key,
-                        (colour, &record),
+                        (c, &record),
                         reverse,
                         &atoms,
                         &mut recorded,
@@ -967,7 +1007,7 @@ mod tests {
             }
         }
         let mut v = v0.clone();
-        let sweep = |colour: &[c_int], record: &PairRecord, v: &mut [f64]| {
+        let sweep = |k: &Kernels, colour: usize, record: &PairRecord, v: &mut [f64]| {
             k.sweep_recorded(
                 SweepFlow::Ou,
                 0.05,
@@ -980,10 +1020,16 @@ mod tests {
                 None,
             )
         };
-        assert_eq!(sweep(&[n as c_int], &record, &mut v), DPD_LAMMPS_INDEX);
-        let mut other = PairRecord::default();
+        assert_eq!(sweep(&k, 8, &record, &mut v), DPD_LAMMPS_INDEX);
+        let mut other = PairRecord::new(&k);
         other.clear(n - 1);
-        assert_eq!(sweep(&colours[0], &other, &mut v), DPD_LAMMPS_INDEX);
+        assert_eq!(sweep(&k, 0, &other, &mut v), DPD_LAMMPS_INDEX);
+        let mut uncoloured = parity.clone();
+        uncoloured[7] = 8;
+        evaluate(&mut other, &uncoloured);
+        assert_eq!(sweep(&k, 0, &other, &mut v), DPD_LAMMPS_INDEX);
+        let three = Kernels::new(1.0, 2.0, 3, &[4.5; 16], &[1.0; 16]).unwrap();
+        assert_eq!(sweep(&three, 0, &record, &mut v), DPD_LAMMPS_INDEX);
         assert_eq!(v, v0);
     }
 

@@ -1,84 +1,180 @@
-//! The pairs within the cutoff that a `dpd/soft` force evaluation found, with their geometry,
-//! kept for the pairwise sweeps that follow at the same positions (ABOBA's O follows the force
-//! evaluation with no drift between; SAS's first T the previous step's evaluation), so that a
-//! sweep does not pass over the neighbour list and recompute every pair's distance again.
+//! The pairs within the sweeps' cutoff that a `dpd/soft` force evaluation found, with their
+//! geometry and weight, kept for the pairwise sweeps that follow at the same positions (ABOBA's
+//! O follows the force evaluation with no drift between; SAS's first T the previous step's
+//! evaluation), so that a sweep neither passes over the neighbour list nor over the pairs again.
 //!
-//! The record is filled pair by pair in the neighbour list's order and indexed by atom i, so a
-//! sweep that visits atoms in the order of the list (one colour of the staged sweep at a time)
-//! and each atom's recorded pairs in turn visits the in-range pairs in the order of the list,
-//! and applies the same updates, bit for bit, as a sweep over the list's pairs.
+//! The fix gives the record the colour (octant, 0 to 7) of every atom at the neighbour-list
+//! build ([`PairRecord::colour_atoms`]); the evaluation appends each pair to the bucket of its
+//! atom i's colour, in the neighbour list's order. A colour's bucket is then the sequence of
+//! pairs a sweep over the list's pairs of that colour's atoms visits (its atoms in the list's
+//! order, each atom's pairs in turn), and a sweep over it applies the same updates, bit for
+//! bit.
 
+use crate::{Kernels, DPD_LAMMPS_NULL, DPD_LAMMPS_OK};
 use std::ffi::c_int;
 
-/// One pair within the pair style's cutoff: atoms i and j, `e_ij = (x_i - x_j) / r`, `r` and
-/// `r^2`, computed as [`crate::Kernels`]' sweeps compute them.
+/// One pair within the sweeps' cutoff `r_c,IJ` of its types: atoms i and j, `e_ij = (x_i -
+/// x_j) / r`, the distance `r`, the weight `w = 1 - r / r_c,IJ` and the type pair's slot
+/// `I (ntypes + 1) + J` in the kernels' tables, computed as [`crate::Kernels`]' sweeps over a
+/// pair list compute them.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Recorded {
+pub struct Near {
     pub i: u32,
     pub j: u32,
     pub e: [f64; 3],
     pub r: f64,
-    pub r2: f64,
+    pub w: f64,
+    pub slot: u32,
 }
 
-/// The in-range pairs of one evaluation over `natoms` atoms (owned and ghosts), grouped by
-/// atom i: those of atom i are `pairs[range[i].0..range[i].1]`.
-#[derive(Debug, Default)]
+/// The colour of an atom that has none (a ghost, or an atom the fix did not colour).
+const NO_COLOUR: u8 = u8::MAX;
+
+/// The in-range pairs of one evaluation over `natoms` atoms (owned and ghosts), by colour of
+/// atom i, for the sweeps of one set of [`Kernels`] (their types and cutoffs).
+#[derive(Debug)]
 pub struct PairRecord {
+    ntypes: usize,
+    /// The sweeps' cutoff per type-pair slot.
+    rc: Vec<f64>,
+    /// Per atom its colour, [`NO_COLOUR`] for none.
+    colour: Vec<u8>,
     natoms: usize,
-    range: Vec<(u32, u32)>,
-    pairs: Vec<Recorded>,
+    /// Whether every atom i of the evaluation had a colour (else the buckets are not used).
+    complete: bool,
+    /// The colour of the atom whose pairs are being added.
+    current: u8,
+    buckets: [Vec<Near>; 8],
 }
 
 impl PairRecord {
+    /// An empty record for the sweeps of `kernels`.
+    pub fn new(kernels: &Kernels) -> PairRecord {
+        PairRecord {
+            ntypes: kernels.ntypes(),
+            rc: kernels.cutoffs(),
+            colour: Vec::new(),
+            natoms: 0,
+            complete: false,
+            current: NO_COLOUR,
+            buckets: Default::default(),
+        }
+    }
+
+    /// The number of atom types of its kernels.
+    pub fn ntypes(&self) -> usize {
+        self.ntypes
+    }
+
+    /// Set the colour of each atom `k` to `colour[k]` (0 to 7; any other value: none) for the
+    /// evaluations that follow.
+    pub fn colour_atoms(&mut self, colour: &[u8]) {
+        self.colour.clear();
+        self.colour
+            .extend(colour.iter().map(|&c| if c < 8 { c } else { NO_COLOUR }));
+    }
+
     /// Forget the previous evaluation: no pairs, for `natoms` atoms.
     pub fn clear(&mut self, natoms: usize) {
         self.natoms = natoms;
-        self.range.clear();
-        self.range.resize(natoms, (0, 0));
-        self.pairs.clear();
+        self.complete = true;
+        self.current = NO_COLOUR;
+        self.buckets.iter_mut().for_each(Vec::clear);
     }
 
-    /// Start the pairs of atom i (each atom once per evaluation).
+    /// Start the pairs of atom i (each atom once per evaluation): they go to its colour's
+    /// bucket; an atom without a colour makes the record incomplete.
     pub fn begin(&mut self, i: usize) {
-        let start = self.pairs.len() as u32;
-        self.range[i] = (start, start);
-    }
-
-    /// Add a pair of atom i, the one last begun, with separation `d = x_i - x_j`, `r2 = |d|^2`
-    /// and `r = sqrt(r2)`.
-    #[inline(always)]
-    pub fn push(&mut self, i: usize, j: usize, d: [f64; 3], r: f64, r2: f64) {
-        self.pairs.push(Recorded {
-            i: i as u32,
-            j: j as u32,
-            e: d.map(|c| c / r),
-            r,
-            r2,
-        });
-        self.range[i].1 = self.pairs.len() as u32;
-    }
-
-    /// The recorded pairs of each of the atoms `atoms` (indices as LAMMPS's), in that order,
-    /// or `None` if the record is not of these `natoms` atoms or an index lies outside them.
-    pub fn pairs_of(&self, atoms: &[c_int], natoms: usize) -> Option<Vec<&[Recorded]>> {
-        if natoms != self.natoms {
-            return None;
+        self.current = self.colour.get(i).copied().unwrap_or(NO_COLOUR);
+        if self.current == NO_COLOUR {
+            self.complete = false;
         }
-        atoms
-            .iter()
-            .map(|&i| {
-                let &(start, end) = self.range.get(usize::try_from(i).ok()?)?;
-                Some(&self.pairs[start as usize..end as usize])
-            })
-            .collect()
+    }
+
+    /// Add a pair of atom i, the one last begun, within the pair style's cutoff `rc_style`
+    /// of type-pair slot `slot`, with separation `d = x_i - x_j`, `r2 = |d|^2`, `r =
+    /// sqrt(r2)` and `w_style = 1 - r / rc_style`, if it lies within the sweeps' cutoff of the
+    /// slot (for a slot beyond the kernels' types, nothing).
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    pub fn push(
+        &mut self,
+        (i, j): (usize, usize),
+        d: [f64; 3],
+        (r, r2): (f64, f64),
+        slot: usize,
+        (rc_style, w_style): (f64, f64),
+    ) {
+        let (Some(&rc), Some(bucket)) = (
+            self.rc.get(slot),
+            self.buckets.get_mut(usize::from(self.current)),
+        ) else {
+            return;
+        };
+        if r2 < rc * rc {
+            bucket.push(Near {
+                i: i as u32,
+                j: j as u32,
+                e: d.map(|c| c / r),
+                r,
+                // The same expression as the style's weight: the same bits when the cutoffs
+                // agree.
+                w: if rc == rc_style {
+                    w_style
+                } else {
+                    1.0 - r / rc
+                },
+                slot: slot as u32,
+            });
+        }
+    }
+
+    /// The recorded pairs of atoms of colour `colour`, in order, or `None` if the record is
+    /// not complete, not of these `natoms` atoms, of kernels of another number of types, or
+    /// `colour` is not 0 to 7.
+    pub fn bucket(&self, colour: usize, natoms: usize, ntypes: usize) -> Option<&[Near]> {
+        let valid = self.complete && natoms == self.natoms && ntypes == self.ntypes;
+        self.buckets
+            .get(colour)
+            .filter(|_| valid)
+            .map(Vec::as_slice)
     }
 }
 
-/// A new, empty record, to be freed with [`dpd_lammps_record_free`].
+/// A new, empty record for the sweeps of `kernels` (null if it is null), to be freed with
+/// [`dpd_lammps_record_free`].
+///
+/// # Safety
+/// `kernels` is null or comes from [`crate::abi::dpd_lammps_new`].
 #[no_mangle]
-pub extern "C" fn dpd_lammps_record_new() -> *mut PairRecord {
-    Box::into_raw(Box::default())
+pub unsafe extern "C" fn dpd_lammps_record_new(kernels: *const Kernels) -> *mut PairRecord {
+    // SAFETY: the contract.
+    match unsafe { kernels.as_ref() } {
+        Some(kernels) => Box::into_raw(Box::new(PairRecord::new(kernels))),
+        None => std::ptr::null_mut(),
+    }
+}
+
+/// Give the record the colour (0 to 7, other values: none) of each of the `natoms` atoms in
+/// `colour`, for the evaluations that follow. Returns `DPD_LAMMPS_OK`, or `DPD_LAMMPS_NULL`
+/// for a null record or a null `colour` with `natoms > 0`.
+///
+/// # Safety
+/// `record` is null or from [`dpd_lammps_record_new`]; `colour` points to `natoms` bytes.
+#[no_mangle]
+pub unsafe extern "C" fn dpd_lammps_record_colours(
+    record: *mut PairRecord,
+    natoms: usize,
+    colour: *const u8,
+) -> c_int {
+    // SAFETY: the contract.
+    match unsafe { (record.as_mut(), crate::abi::slice(colour, natoms)) } {
+        (Some(record), Some(colour)) => {
+            record.colour_atoms(colour);
+            DPD_LAMMPS_OK
+        }
+        _ => DPD_LAMMPS_NULL,
+    }
 }
 
 /// Free a record made by [`dpd_lammps_record_new`]; null is ignored.

@@ -15,7 +15,7 @@
 
 use crate::abi::{slice, slice_mut};
 use crate::record::PairRecord;
-use crate::{DPD_LAMMPS_INDEX, DPD_LAMMPS_NULL, DPD_LAMMPS_OK};
+use crate::{DPD_LAMMPS_INDEX, DPD_LAMMPS_NULL, DPD_LAMMPS_OK, DPD_LAMMPS_TYPE};
 use dpd_core::potential::Soft;
 use std::ffi::c_int;
 
@@ -127,10 +127,10 @@ impl<'a> SoftStyle<'a> {
                 continue;
             }
             let r = r2.sqrt();
-            if let Some(record) = record.as_deref_mut() {
-                record.push(i, j, d, r, r2);
-            }
             let w = 1.0 - r / rc;
+            if let Some(record) = record.as_deref_mut() {
+                record.push((i, j), d, (r, r2), pair, (rc, w));
+            }
             let soft = Soft::new(self.a[pair], rc);
             // The force on i is `fpair d`, on j `-fpair d`.
             let fpair = factor * soft.force(w) / r;
@@ -174,8 +174,9 @@ impl<'a> SoftStyle<'a> {
 /// `eatom` (`nall` doubles) and `vatom` (`6 nall`) null or per-atom tallies to add to. Returns
 /// `DPD_LAMMPS_OK`, `DPD_LAMMPS_NULL` for a null array that is needed, or `DPD_LAMMPS_INDEX`
 /// for an atom index or type out of range (forces then partly added). `record` is null, or a
-/// [`PairRecord`] that is cleared and given the pairs within the cutoff with their geometry,
-/// for the sweeps that follow at these positions.
+/// [`PairRecord`] that is cleared and given the pairs within its sweeps' cutoff with their
+/// geometry, for the sweeps that follow at these positions (`DPD_LAMMPS_TYPE`, nothing added,
+/// if its kernels have another number of types).
 ///
 /// # Safety
 /// Every non-null pointer points to as many valid values as said above (`firstneigh[i]` to
@@ -252,6 +253,10 @@ pub unsafe extern "C" fn dpd_lammps_soft_forces(
     // SAFETY: the contract: null or a record of `dpd_lammps_record_new`, overlapping nothing.
     let mut record = unsafe { record.as_mut() };
     if let Some(record) = record.as_deref_mut() {
+        // The record's type-pair slots are its kernels'.
+        if record.ntypes() != ntypes {
+            return DPD_LAMMPS_TYPE;
+        }
         record.clear(nall);
     }
     for &i in ilist {
@@ -364,7 +369,9 @@ mod tests {
         let (x, types) = atoms();
         let style = SoftStyle::new(2, &a, &rc, [1.0, 0.0, 1.0, 1.0]).unwrap();
         let mut f = vec![0.0; 9];
-        let mut record = PairRecord::default();
+        let kernels = crate::Kernels::new(1.0, 2.0, 2, &[4.5; 9], &rc).unwrap();
+        let mut record = PairRecord::new(&kernels);
+        record.colour_atoms(&[0, 0, 0]);
         record.clear(3);
         let neighbours = [1, 2 | 1 << SBBITS];
         let status = style.atom(
@@ -378,10 +385,11 @@ mod tests {
         );
         assert_eq!(status, 0);
         assert_eq!(f[6..9], [0.0; 3], "{f:?}");
-        let pairs = record.pairs_of(&[0], 3).unwrap();
-        assert_eq!(pairs[0].len(), 1);
-        assert_eq!((pairs[0][0].i, pairs[0][0].j), (0, 1));
-        assert!((pairs[0][0].r - 0.5).abs() < 1e-12);
+        let pairs = record.bucket(0, 3, 2).unwrap();
+        assert_eq!(pairs.len(), 1);
+        assert_eq!((pairs[0].i, pairs[0].j), (0, 1));
+        assert!((pairs[0].r - 0.5).abs() < 1e-12);
+        assert!((pairs[0].w - 0.375).abs() < 1e-12);
     }
 
     #[test]
