@@ -21,11 +21,14 @@ impl Tags<'_> {
         }
     }
 
-    /// Whether every tag fits the 32-bit key of the pair noise.
+    /// Whether every tag fits the 32-bit key of the pair noise (folded without branches, so
+    /// that the compiler vectorises it: the check runs at every sweep call).
     fn in_range(&self) -> bool {
         match self {
-            Tags::Small(t) => t.iter().all(|&k| k >= 0),
-            Tags::Big(t) => t.iter().all(|&k| u32::try_from(k).is_ok()),
+            Tags::Small(t) => t.iter().fold(true, |ok, &k| ok & (k >= 0)),
+            Tags::Big(t) => t
+                .iter()
+                .fold(true, |ok, &k| ok & (k >= 0) & (k <= i64::from(u32::MAX))),
         }
     }
 
@@ -69,11 +72,7 @@ impl Atoms<'_> {
             DPD_LAMMPS_INDEX
         } else if self.tag.len() < n || !self.tag.in_range() {
             DPD_LAMMPS_TAG
-        } else if self.types.len() < n
-            || self.types[..n]
-                .iter()
-                .any(|&t| usize::try_from(t).map_or(true, |t| t == 0 || t > ntypes))
-        {
+        } else if self.types.len() < n || !types_in_range(&self.types[..n], ntypes) {
             DPD_LAMMPS_TYPE
         } else {
             DPD_LAMMPS_OK
@@ -93,6 +92,12 @@ impl Atoms<'_> {
         let d: [f64; 3] = std::array::from_fn(|k| x[3 * i + k] - x[3 * j + k]);
         (d, d[0] * d[0] + d[1] * d[1] + d[2] * d[2])
     }
+}
+
+/// Whether every type lies in `1..=ntypes` (folded without branches, as [`Tags::in_range`]).
+fn types_in_range(types: &[c_int], ntypes: usize) -> bool {
+    let top = c_int::try_from(ntypes).unwrap_or(c_int::MAX);
+    types.iter().fold(true, |ok, &t| ok & (t >= 1) & (t <= top))
 }
 
 #[cfg(test)]
