@@ -39,6 +39,22 @@ pub(crate) struct Overstretch {
     pub r: f64,
 }
 
+/// How many bonds ahead [`Located::each_bond`] fetches the second particle's position.
+const AHEAD: usize = 16;
+
+/// Ask the CPU to bring `x` into its caches (a hint: no effect on results, none off x86_64).
+#[inline(always)]
+fn prefetch<T>(x: &T) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
+        // SAFETY: a prefetch reads nothing and cannot fault; `x` is a valid reference anyway.
+        unsafe { _mm_prefetch::<_MM_HINT_T0>((x as *const T).cast()) };
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = x;
+}
+
 /// One bond as [`Located::each_bond`] visits it: its vector `d = q_i - q_j` of squared length
 /// `r2`, the force on `i`.
 struct BondTerm<'a> {
@@ -46,6 +62,9 @@ struct BondTerm<'a> {
     d: Vec3,
     r2: f64,
     force: Vec3,
+    /// The second particle of the bond [`AHEAD`] bonds later, if any: what a visit writing per
+    /// particle may fetch early.
+    later: Option<u32>,
 }
 
 /// One angle as [`Located::each_angle`] visits it: its arms `q_i - q_j`, `q_k - q_j` and the
@@ -124,6 +143,10 @@ impl Located {
     }
 
     /// [`Located::each_bond`] with the bond vectors imaged by `image`.
+    ///
+    /// The bonds are in the storage order of their first particle, but the second lies up to a
+    /// layer of cells away: its position, read at random, stalled the loop (perf put 43 % of
+    /// the loop's samples on that load). It is fetched into the cache [`AHEAD`] bonds early.
     #[inline(always)]
     fn each_bond_imaged(
         &self,
@@ -132,7 +155,11 @@ impl Located {
         mut visit: impl FnMut(BondTerm),
     ) {
         let styles = self.topology.bond_types();
-        for b in &self.bonds {
+        for (n, b) in self.bonds.iter().enumerate() {
+            let later = self.bonds.get(n + AHEAD).map(|later| later.j);
+            if let Some(j) = later {
+                prefetch(&q[j as usize]);
+            }
             let d = image(q[b.i as usize] - q[b.j as usize]);
             let r2 = d.norm_squared();
             let force = styles[b.kind as usize].force_over_r(r2) * d;
@@ -141,6 +168,7 @@ impl Located {
                 d,
                 r2,
                 force,
+                later,
             });
         }
     }
@@ -174,6 +202,9 @@ impl Located {
             frame,
             #[inline(always)]
             |t| {
+                if let Some(j) = t.later {
+                    prefetch(&out[j as usize]);
+                }
                 stretched |= styles[t.bond.kind as usize].overstretched(t.r2);
                 out[t.bond.i as usize] += t.force;
                 out[t.bond.j as usize] -= t.force;
