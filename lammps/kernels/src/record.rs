@@ -42,9 +42,49 @@ pub struct PairRecord {
     natoms: usize,
     /// Whether every atom i of the evaluation had a colour (else the buckets are not used).
     complete: bool,
-    /// The colour of the atom whose pairs are being added.
-    current: u8,
     buckets: [Vec<Near>; 8],
+}
+
+/// Where the pairs of one atom i go: its colour's bucket, with the sweeps' cutoffs.
+pub struct Bucket<'a> {
+    rc: &'a [f64],
+    pairs: &'a mut Vec<Near>,
+}
+
+impl Bucket<'_> {
+    /// Add a pair of atom i within the pair style's cutoff `rc_style` of type-pair slot
+    /// `slot`, with separation `d = x_i - x_j`, `r2 = |d|^2`, `r = sqrt(r2)` and `w_style = 1 -
+    /// r / rc_style`, if it lies within the sweeps' cutoff of the slot (for a slot beyond the
+    /// kernels' types, nothing).
+    #[inline(always)]
+    pub fn push(
+        &mut self,
+        (i, j): (usize, usize),
+        d: [f64; 3],
+        (r, r2): (f64, f64),
+        slot: usize,
+        (rc_style, w_style): (f64, f64),
+    ) {
+        let Some(&rc) = self.rc.get(slot) else {
+            return;
+        };
+        if r2 < rc * rc {
+            self.pairs.push(Near {
+                i: i as u32,
+                j: j as u32,
+                e: d.map(|c| c / r),
+                r,
+                // The same expression as the style's weight: the same bits when the cutoffs
+                // agree.
+                w: if rc == rc_style {
+                    w_style
+                } else {
+                    1.0 - r / rc
+                },
+                slot: slot as u32,
+            });
+        }
+    }
 }
 
 impl PairRecord {
@@ -56,7 +96,6 @@ impl PairRecord {
             colour: Vec::new(),
             natoms: 0,
             complete: false,
-            current: NO_COLOUR,
             buckets: Default::default(),
         }
     }
@@ -78,54 +117,22 @@ impl PairRecord {
     pub fn clear(&mut self, natoms: usize) {
         self.natoms = natoms;
         self.complete = true;
-        self.current = NO_COLOUR;
         self.buckets.iter_mut().for_each(Vec::clear);
     }
 
-    /// Start the pairs of atom i (each atom once per evaluation): they go to its colour's
-    /// bucket; an atom without a colour makes the record incomplete.
-    pub fn begin(&mut self, i: usize) {
-        self.current = self.colour.get(i).copied().unwrap_or(NO_COLOUR);
-        if self.current == NO_COLOUR {
-            self.complete = false;
-        }
-    }
-
-    /// Add a pair of atom i, the one last begun, within the pair style's cutoff `rc_style`
-    /// of type-pair slot `slot`, with separation `d = x_i - x_j`, `r2 = |d|^2`, `r =
-    /// sqrt(r2)` and `w_style = 1 - r / rc_style`, if it lies within the sweeps' cutoff of the
-    /// slot (for a slot beyond the kernels' types, nothing).
-    #[inline(always)]
-    #[allow(clippy::too_many_arguments)]
-    pub fn push(
-        &mut self,
-        (i, j): (usize, usize),
-        d: [f64; 3],
-        (r, r2): (f64, f64),
-        slot: usize,
-        (rc_style, w_style): (f64, f64),
-    ) {
-        let (Some(&rc), Some(bucket)) = (
-            self.rc.get(slot),
-            self.buckets.get_mut(usize::from(self.current)),
-        ) else {
-            return;
-        };
-        if r2 < rc * rc {
-            bucket.push(Near {
-                i: i as u32,
-                j: j as u32,
-                e: d.map(|c| c / r),
-                r,
-                // The same expression as the style's weight: the same bits when the cutoffs
-                // agree.
-                w: if rc == rc_style {
-                    w_style
-                } else {
-                    1.0 - r / rc
-                },
-                slot: slot as u32,
-            });
+    /// Start the pairs of atom i (each atom once per evaluation): the bucket of its colour, or
+    /// `None` for an atom without a colour, which makes the record incomplete.
+    pub fn begin(&mut self, i: usize) -> Option<Bucket<'_>> {
+        let colour = self.colour.get(i).copied().unwrap_or(NO_COLOUR);
+        match self.buckets.get_mut(usize::from(colour)) {
+            Some(pairs) => Some(Bucket {
+                rc: &self.rc,
+                pairs,
+            }),
+            None => {
+                self.complete = false;
+                None
+            }
         }
     }
 

@@ -94,7 +94,7 @@ impl<'a> SoftStyle<'a> {
         types: &[c_int],
         f: &mut [f64],
         tally: &mut Tally,
-        mut record: Option<&mut PairRecord>,
+        record: Option<&mut PairRecord>,
     ) -> c_int {
         let n = types.len();
         let Some(ti) = self.type_of(types, i) else {
@@ -105,9 +105,7 @@ impl<'a> SoftStyle<'a> {
         }
         let xi = [x[3 * i], x[3 * i + 1], x[3 * i + 2]];
         let mut fi = [0.0; 3];
-        if let Some(record) = record.as_deref_mut() {
-            record.begin(i);
-        }
+        let mut bucket = record.and_then(|r| r.begin(i));
         for &packed in neighbours {
             let factor = self.special[(packed >> SBBITS & 3) as usize];
             let j = (packed & NEIGHMASK) as usize;
@@ -128,8 +126,8 @@ impl<'a> SoftStyle<'a> {
             }
             let r = r2.sqrt();
             let w = 1.0 - r / rc;
-            if let Some(record) = record.as_deref_mut() {
-                record.push((i, j), d, (r, r2), pair, (rc, w));
+            if let Some(bucket) = bucket.as_mut() {
+                bucket.push((i, j), d, (r, r2), pair, (rc, w));
             }
             let soft = Soft::new(self.a[pair], rc);
             // The force on i is `fpair d`, on j `-fpair d`.
