@@ -14,9 +14,9 @@
 
 pub use dpd_core::{
     bonded, boundary, checkpoint, error, flow, init, metropolis, neighbour, observe, pairs, params,
-    reference, rng, scheme, system, AdvanceError, BlowUp, CheckpointError, DynScheme, Flow,
-    ForceGroup, ParamError, Params, PeriodicBox, Scheme, Stage, SweepOrder, System, SystemBuilder,
-    Vec3,
+    reference, rng, scheme, system, Acceptance, AdvanceError, BlowUp, CheckpointError, DynScheme,
+    Flow, ForceGroup, ParamError, Params, PeriodicBox, Scheme, Stage, SweepOrder, System,
+    SystemBuilder, Vec3,
 };
 pub use dpd_ir::{analysis, design, lang, program, Analysis, Program};
 #[doc = include_str!("dpd_scheme.md")]

@@ -124,6 +124,32 @@ fn adaptive_schemes_match_dyn_scheme_bitwise() {
     }
 }
 
+/// Metropolis-adjusted schemes at dt = 0.05 on the relaxed standard box, where some proposals
+/// are rejected: the same bits after every step, and the same acceptance.
+#[test]
+fn adjusted_schemes_match_dyn_scheme_bitwise() {
+    let relaxed = || {
+        let mut sys = common::standard_box(4.5, 0.02, SEED);
+        sys.advance(&dynamic("ABOBA"), 300).unwrap();
+        sys.set_dt(0.05).unwrap();
+        sys
+    };
+    for (generated, source) in [
+        (
+            &dpd_scheme!("{B(1/2) A B(1/2)} O") as &dyn Scheme,
+            "{B(1/2) A B(1/2)} O",
+        ),
+        (
+            &dpd_scheme!("{A(1/4) B(1/2) A(1/4)} Ob(1/2) {A(1/4) B(1/2) A(1/4)} O(1/2)"),
+            "{A(1/4) B(1/2) A(1/4)} Ob(1/2) {A(1/4) B(1/2) A(1/4)} O(1/2)",
+        ),
+    ] {
+        let sa = same_steps(relaxed, generated, source);
+        let a = sa.acceptance();
+        assert!(0 < a.accepted && a.accepted < a.proposed, "{source}: {a:?}");
+    }
+}
+
 #[test]
 fn obab_with_exact_o_matches_dyn_scheme_bitwise() {
     assert_same_trajectory(&dpd_scheme!("OBAB"), &dynamic("OBAB"), 1000);

@@ -295,8 +295,20 @@ fn outputs() -> BTreeMap<&'static str, Vec<Value>> {
              [[molecules]]\nlength = 5\nfraction = 0.5\nbond = \"f\"\n"
         ),
     );
+    // A Metropolis-adjusted scheme reports its acceptance.
+    let adjusted = write(
+        d,
+        "adjusted.toml",
+        &format!("{tiny}scheme = \"{{B(1/2) A B(1/2)}} O\"\n"),
+    );
     let run = |scene: &str| json(&dpd(d, &["run", "--scene", scene, "--json"]));
-    let runs = [run(&observed), run(&channel), run(&mixture), run(&melt)];
+    let runs = [
+        run(&observed),
+        run(&channel),
+        run(&mixture),
+        run(&melt),
+        run(&adjusted),
+    ];
     let sweep_out = dpd(d, &["sweep", "--scene", &sheared, "--json", "s.json"]);
     assert!(sweep_out.status.success(), "{sweep_out:?}");
     let sweep: Value = serde_json::from_slice(&std::fs::read(d.join("s.json")).unwrap()).unwrap();

@@ -2,8 +2,8 @@
 //! release of the macro, which is version-locked to this crate.
 
 pub use crate::flow::{
-    adaptive_ou, bbk, collide, drift, full_force, full_force_group, kick, kick_group, ou, trotter,
-    xi_update,
+    accept, adaptive_ou, bbk, collide, drift, full_force, full_force_group, kick, kick_group, ou,
+    propose, trotter, xi_update,
 };
 pub use crate::scheme::Scheme;
 pub use crate::system::System;

@@ -6,7 +6,8 @@
 //! neighbour-list build (which fix the sweep order and the next rebuild), the name of the
 //! scheme, the topology (bonds and angles by id, from version 8), the Lowe-Andersen collision
 //! rate (from version 9), whether bonded pairs are excluded from the pair forces (from version
-//! 10), PAdL's thermostat mass and adaptive friction factor xi (from version 11), and what a scheme carries between steps (the full forces of velocity Verlet, with
+//! 10), PAdL's thermostat mass and adaptive friction factor xi (from version 11), the counts
+//! of the accept/reject tests of Metropolis-adjusted schemes (from version 12), and what a scheme carries between steps (the full forces of velocity Verlet, with
 //! their noise). Pair geometry and conservative forces are not stored: they are pure functions
 //! of the positions and the list, recomputed in the same pair order, hence bitwise equal. A restarted run
 //! therefore continues bit for bit like an uninterrupted one.
@@ -14,8 +15,9 @@
 //! File layout: 8 magic bytes `DPDCHKPT`, format version (u32 LE), payload length (u64 LE),
 //! CRC-32 of the payload (u32 LE), payload (bincode: the fields of `Payload`, then, from
 //! version 8, the optional topology, from version 9 the optional collision rate and from
-//! version 10 the exclusion flag, from version 11 the optional thermostat mass and xi; version
-//! 7 to 10 files, without them, still load, excluding nothing, with xi = 1). Writes go to a temporary file in the same
+//! version 10 the exclusion flag, from version 11 the optional thermostat mass and xi, from
+//! version 12 the tests made and accepted (two u64); version 7 to 11 files, without them, still
+//! load, excluding nothing, with xi = 1 and no test counted). Writes go to a temporary file in the same
 //! directory, are synced, then renamed over the target, so an interrupted write never destroys
 //! the previous checkpoint.
 
@@ -31,10 +33,10 @@ use std::io::Write;
 use std::path::Path;
 
 const MAGIC: &[u8; 8] = b"DPDCHKPT";
-const VERSION: u32 = 11;
-/// The oldest version read: version 7 is version 11 without the topology, the collision rate,
-/// the exclusion flag, the thermostat mass and xi; each later version adds the next of them
-/// (version 10 lacks only the thermostat mass and xi).
+const VERSION: u32 = 12;
+/// The oldest version read: version 7 is version 12 without the topology, the collision rate,
+/// the exclusion flag, the thermostat mass and xi, and the acceptance counts; each later
+/// version adds the next of them (version 11 lacks only the acceptance counts).
 const OLDEST: u32 = 7;
 const HEADER: usize = 8 + 4 + 8 + 4;
 
@@ -123,6 +125,9 @@ impl System {
         bincode::serialize_into(&mut data, &self.excludes_bonded()).map_err(encode)?;
         bincode::serialize_into(&mut data, &self.params().thermostat_mass()).map_err(encode)?;
         bincode::serialize_into(&mut data, &self.xi()).map_err(encode)?;
+        let acceptance = self.acceptance();
+        bincode::serialize_into(&mut data, &(acceptance.proposed, acceptance.accepted))
+            .map_err(encode)?;
         let mut bytes = Vec::with_capacity(HEADER + data.len());
         bytes.extend_from_slice(MAGIC);
         bytes.extend_from_slice(&VERSION.to_le_bytes());
@@ -210,6 +215,11 @@ impl System {
         } else {
             (None, 1.0)
         };
+        let (proposed, accepted): (u64, u64) = if version >= 12 {
+            bincode::deserialize_from(&mut rest).map_err(decode)?
+        } else {
+            (0, 0)
+        };
         let invalid = |source| CheckpointError::Invalid {
             path: name.clone(),
             source,
@@ -249,6 +259,7 @@ impl System {
             list_reference: payload.list_reference,
             list_shear,
             full_forces: payload.full_forces,
+            acceptance: crate::system::Acceptance { proposed, accepted },
         })
         .map_err(invalid)?;
         Ok((sys, payload.scheme))
@@ -295,11 +306,12 @@ mod tests {
         assert_eq!(back.ids(), sys.ids());
     }
 
-    /// Version 7 to 10 files (version 11 without the topology, the collision rate, the
-    /// exclusion flag, the thermostat mass and xi that follow the payload, or without the
-    /// first of them that their version lacks) load, excluding nothing, with xi = 1.
+    /// Version 7 to 11 files (version 12 without the topology, the collision rate, the
+    /// exclusion flag, the thermostat mass, xi and the acceptance counts that follow the
+    /// payload, or without the first of them that their version lacks) load, excluding
+    /// nothing, with xi = 1 and no test counted.
     #[test]
-    fn version_7_to_10_checkpoints_load() {
+    fn version_7_to_11_checkpoints_load() {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("c.chk");
         let sys = system(None);
@@ -307,12 +319,13 @@ mod tests {
         let bytes = std::fs::read(&path).unwrap();
         let mut tail = vec![0, 0, 0, 0];
         tail.extend_from_slice(&1f64.to_le_bytes());
+        tail.extend_from_slice(&[0; 16]);
         assert_eq!(
-            bytes[bytes.len() - 12..],
+            bytes[bytes.len() - 28..],
             tail,
-            "bincode's None twice, false, None, xi = 1"
+            "bincode's None twice, false, None, xi = 1, no test"
         );
-        for (version, dropped) in [(7u32, 12), (8, 11), (9, 10), (10, 9)] {
+        for (version, dropped) in [(7u32, 28), (8, 27), (9, 26), (10, 25), (11, 16)] {
             let data = &bytes[HEADER..bytes.len() - dropped];
             let mut old = MAGIC.to_vec();
             old.extend_from_slice(&version.to_le_bytes());
@@ -328,6 +341,7 @@ mod tests {
             assert!(back.topology().is_none() && back.params().collision_rate().is_none());
             assert!(!back.excludes_bonded() && back.params().thermostat_mass().is_none());
             assert_eq!(back.xi(), 1.0);
+            assert_eq!(back.acceptance(), Default::default());
         }
     }
 

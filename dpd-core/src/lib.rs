@@ -58,7 +58,7 @@ pub use dpd_ir::{Flow, ForceGroup, Stage, SweepOrder};
 pub use error::{AdvanceError, BlowUp, CheckpointError, ParamError};
 pub use params::Params;
 pub use scheme::{DynScheme, Scheme};
-pub use system::{System, SystemBuilder};
+pub use system::{Acceptance, System, SystemBuilder};
 pub use walls::Walls;
 
 /// Three-vector of `f64`, the type of positions, momenta and forces.

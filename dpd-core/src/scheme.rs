@@ -3,8 +3,8 @@
 
 use crate::error::{AdvanceError, ParamError};
 use crate::flow::{
-    adaptive_ou, bbk, collide, drift, full_force, full_force_group, kick, kick_group, ou, trotter,
-    xi_update,
+    accept, adaptive_ou, bbk, collide, drift, full_force, full_force_group, kick, kick_group, ou,
+    propose, trotter, xi_update,
 };
 use crate::system::System;
 use dpd_ir::{Diagnostic, Flow, ForceGroup, Options, Program, Stage};
@@ -77,7 +77,8 @@ impl System {
     /// (`B[bond]`) must be one the system has ([`System::force_groups`]), and each group the
     /// system has must be applied by some stage (a scheme of `B[pair]` and `T` alone leaves the
     /// bonded forces out); a program with L needs a collision rate ([`crate::Params::collision_rate`]),
-    /// one with Xi a thermostat mass ([`crate::Params::thermostat_mass`]).
+    /// one with Xi a thermostat mass ([`crate::Params::thermostat_mass`]); a Metropolis-adjusted
+    /// program (`{...}`) an equilibrium scene (no shear, walls or body force).
     /// Hand-written schemes, without a program, are not checked.
     pub fn check_scheme<S: Scheme + ?Sized>(&self, scheme: &S) -> Result<(), ParamError> {
         let Some(program) = scheme.program() else {
@@ -120,6 +121,28 @@ impl System {
                 return Err(ParamError::new(field, "unset", message));
             }
         }
+        // The accept/reject tests the energy of a Hamiltonian: not defined with a sliding
+        // boundary (work done on the box), walls (reflections and frozen particles) or a body
+        // force (no potential in a periodic box).
+        let scene = [
+            ("shear_rate", self.shear().is_some()),
+            ("walls", self.walls().is_some()),
+            ("body_force", self.body_force().is_some()),
+        ];
+        if let Some((key, _)) = scene
+            .iter()
+            .find(|(_, set)| *set)
+            .filter(|_| program.is_adjusted())
+        {
+            return Err(ParamError::new(
+                *key,
+                "set",
+                format!(
+                    "scheme {} is Metropolis-adjusted ({{...}}), whose accept/reject needs the energy of an equilibrium system: a scene without shear, walls or body force",
+                    scheme.name()
+                ),
+            ));
+        }
         Ok(())
     }
 }
@@ -132,14 +155,16 @@ fn kicks_after_sweeps(program: &Program) -> bool {
     let stages = &program.stages;
     let n = stages.len();
     (0..n).any(|s| {
-        !matches!(stages[s].flow, Flow::A | Flow::B | Flow::F)
-            && (1..n)
-                .map(|k| &stages[(s + k) % n])
-                .find(|t| {
-                    matches!(t.flow, Flow::A | Flow::F)
-                        || (t.flow == Flow::B && t.group != Some(ForceGroup::Bond))
-                })
-                .is_some_and(|t| t.flow == Flow::B)
+        !matches!(
+            stages[s].flow,
+            Flow::A | Flow::B | Flow::F | Flow::Propose | Flow::Accept
+        ) && (1..n)
+            .map(|k| &stages[(s + k) % n])
+            .find(|t| {
+                matches!(t.flow, Flow::A | Flow::F)
+                    || (t.flow == Flow::B && t.group != Some(ForceGroup::Bond))
+            })
+            .is_some_and(|t| t.flow == Flow::B)
     })
 }
 
@@ -168,6 +193,8 @@ pub fn apply_stage(sys: &mut System, stage: &Stage) {
         (Flow::L, _) => collide(sys, h, stage.stream, stage.order),
         (Flow::Oa, _) => adaptive_ou(sys, h, stage.stream, stage.order),
         (Flow::Xi, _) => xi_update(sys, h),
+        (Flow::Propose, _) => propose(sys),
+        (Flow::Accept, _) => accept(sys, stage.stream),
     }
 }
 

@@ -76,12 +76,19 @@ impl fmt::Display for Kick {
 
 /// Whether a stage of `flow` restricted to `group` (`None`: the letter's own forces) applies
 /// the forces of `g`: B and F apply every group, or the one they name; T applies the pair
-/// forces; A, O, Ob and L apply none.
+/// forces; A, O, Ob, L and the braces apply none.
 pub fn applies(flow: Flow, group: Option<ForceGroup>, g: ForceGroup) -> bool {
     match flow {
         Flow::B | Flow::F => group.is_none_or(|named| named == g),
         Flow::T => g == ForceGroup::Pair,
-        Flow::A | Flow::O | Flow::Bbk | Flow::L | Flow::Oa | Flow::Xi => false,
+        Flow::A
+        | Flow::O
+        | Flow::Bbk
+        | Flow::L
+        | Flow::Oa
+        | Flow::Xi
+        | Flow::Propose
+        | Flow::Accept => false,
     }
 }
 

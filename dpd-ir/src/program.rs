@@ -40,11 +40,19 @@ pub enum Flow {
     /// `G = sum over pairs gamma_ij w_D (u_ij^2 - kbt (1/m_i + 1/m_j))`, exact at fixed
     /// positions and momenta (which it does not change).
     Xi,
+    /// `{`, the start of a Metropolis-adjusted part: keeps the state and its energy
+    /// `H = K + U` for the accept/reject at the matching [`Flow::Accept`]. No step length.
+    Propose,
+    /// `}`, the end of a Metropolis-adjusted part: keeps the state reached with probability
+    /// `min(1, exp(-Delta H / k_B T))`, else restores the state kept at `{` with its momenta
+    /// negated. Draws one uniform from a stream of its own, apart from the sweeps' streams
+    /// (its [`Stage::stream`] numbers the parts of the step: 0, 1, ...). No step length.
+    Accept,
 }
 
 impl Flow {
     /// Every flow, in the order of the enum.
-    pub const ALL: [Flow; 9] = [
+    pub const ALL: [Flow; 11] = [
         Flow::A,
         Flow::B,
         Flow::O,
@@ -54,6 +62,8 @@ impl Flow {
         Flow::L,
         Flow::Oa,
         Flow::Xi,
+        Flow::Propose,
+        Flow::Accept,
     ];
 
     /// True for the flows that loop over pairs drawing random numbers.
@@ -77,6 +87,12 @@ impl Flow {
     /// True for the flows that may not run with a zero or negative step (stochastic ones).
     pub fn needs_positive_step(self) -> bool {
         self.is_successive_sweep()
+    }
+
+    /// True for the braces of a Metropolis-adjusted part (`{`, `}`): markers without a step
+    /// length, outside the generators of the order analysis.
+    pub fn is_brace(self) -> bool {
+        matches!(self, Flow::Propose | Flow::Accept)
     }
 }
 
@@ -177,7 +193,9 @@ impl Program {
     /// geometry of the current positions; B and B[pair] need a conservative pair-force
     /// evaluation and F and F[pair] a full pair-force evaluation of the current positions,
     /// each cached until positions change; every T sweep evaluates the conservative pair force
-    /// inline; B, F and B[bond] need the bonded forces, cached the same way.
+    /// inline; B, F and B[bond] need the bonded forces, cached the same way. The braces `{` and
+    /// `}` read the pair geometry for the potential energy (an extra pass over the pair table,
+    /// not a force evaluation); a rejection at `}` costs evaluations not counted here.
     pub fn evaluations_per_step(&self) -> Evaluations {
         #[derive(Default)]
         struct Cache {
@@ -232,6 +250,11 @@ impl Program {
     /// Whether some stage applies the forces of `g`: a system that has them needs it.
     pub fn applies(&self, g: ForceGroup) -> bool {
         self.stages.iter().any(|s| s.applies(g))
+    }
+
+    /// Whether the step has a Metropolis-adjusted part (`{ ... }`).
+    pub fn is_adjusted(&self) -> bool {
+        self.stages.iter().any(|s| s.flow == Flow::Propose)
     }
 
     /// Order analysis of the step (algorithms.md section 4).
@@ -309,14 +332,19 @@ impl Program {
 /// group and coefficient, and successive sweeps in opposite orders (the adjoint of a sweep is the
 /// reversed sweep). A stage mirrored onto itself always is.
 fn mirrored(a: &Stage, b: &Stage) -> bool {
+    let braces = matches!(
+        (a.flow, b.flow),
+        (Flow::Propose, Flow::Accept) | (Flow::Accept, Flow::Propose)
+    );
     std::ptr::eq(a, b)
+        || braces
         || (a.flow == b.flow
             && a.group == b.group
             && coeffs_equal(&a.coeff, &b.coeff)
             && (!a.flow.is_successive_sweep() || a.order != b.order))
 }
 
-fn coeffs_equal(a: &Coeff, b: &Coeff) -> bool {
+pub(crate) fn coeffs_equal(a: &Coeff, b: &Coeff) -> bool {
     match (&a.exact, &b.exact) {
         (Some(x), Some(y)) => x == y,
         _ => (a.value - b.value).abs() <= SYMMETRY_TOLERANCE * a.value.abs().max(b.value.abs()),
@@ -366,7 +394,8 @@ impl fmt::Display for Program {
     /// A sweep whose order differs from the default alternation is marked `<` (reverse) or
     /// `>` (forward), so the output compiles back to the same stages (except the shared
     /// noise of PRK tables). The alternate form `{:#}` marks the order of every sweep and the
-    /// random stream of every stochastic stage: `O>(1)@0`.
+    /// random stream of every stochastic stage: `O>(1)@0`. The braces of a Metropolis-adjusted
+    /// part print without a coefficient: `{ B(1/2) A(1) B(1/2) } O(1)`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let mut sweeps = 0;
         for (i, stage) in self.stages.iter().enumerate() {
@@ -374,6 +403,12 @@ impl fmt::Display for Program {
                 f.write_str(" ")?;
             }
             f.write_str(crate::lang::letters::spelling(stage.flow))?;
+            if stage.flow.is_brace() {
+                if f.alternate() && stage.flow == Flow::Accept {
+                    write!(f, "@{}", stage.stream)?;
+                }
+                continue;
+            }
             if let Some(g) = stage.group {
                 write!(f, "[{}]", crate::lang::letters::group_spelling(g))?;
             }

@@ -479,3 +479,22 @@ fn options_are_clamped() {
     assert_eq!(a.invariant_measure_order, Some(1));
     assert!(a.invariant_measure_order_capped);
 }
+
+/// A Metropolis-adjusted step: the analysis says its invariant measure is exact and reports
+/// the orders of the unadjusted word (the braces left out).
+#[test]
+fn metropolis_adjusted_scheme_has_an_exact_measure_and_the_unadjusted_orders() {
+    let adjusted = dpd_ir::compile("{B(1/2) A B(1/2)} O").unwrap().analysis();
+    let plain = dpd_ir::compile("B(1/2) A B(1/2) O").unwrap().analysis();
+    assert!(adjusted.metropolis_adjusted && !plain.metropolis_adjusted);
+    assert_eq!(adjusted.deterministic_order, 2);
+    assert_eq!(
+        adjusted.invariant_measure_order,
+        plain.invariant_measure_order
+    );
+    assert_eq!(adjusted.first_nonvanishing, plain.first_nonvanishing);
+    let text = adjusted.to_string();
+    assert!(text.contains("invariant measure: exact"), "{text}");
+    assert!(text.contains("accept/reject"), "{text}");
+    assert!(!plain.to_string().contains("exact, the Gibbs"));
+}

@@ -615,3 +615,76 @@ fn cyclic_symmetry() {
         assert!(!ok(src).is_cyclically_symmetric(), "{src}");
     }
 }
+
+/// Braces mark a Metropolis-adjusted part: `{` and `}` become stages without a step length,
+/// the `}` takes a random stream of its own, nothing merges across them, and the program
+/// prints back to a source that compiles to itself.
+#[test]
+fn metropolis_adjusted_parts() {
+    let p = ok("{B(1/2) A B(1/2)} O");
+    let flows: Vec<Flow> = p.stages.iter().map(|s| s.flow).collect();
+    assert_eq!(
+        flows,
+        [
+            Flow::Propose,
+            Flow::B,
+            Flow::A,
+            Flow::B,
+            Flow::Accept,
+            Flow::O
+        ]
+    );
+    assert!(p.is_adjusted() && !ok("BAOAB").is_adjusted());
+    assert_eq!(p.to_string(), "{ B(1/2) A(1) B(1/2) } O(1)");
+    assert_eq!(ok(&p.to_string()).stages, p.stages);
+    assert_eq!(format!("{p:#}"), "{ B(1/2) A(1) B(1/2) }@0 O>(1)@0");
+    // The same costs as the unadjusted word: one force evaluation, one pair fill.
+    let plain = ok("B(1/2) A B(1/2) O");
+    assert_eq!(p.evaluations_per_step(), plain.evaluations_per_step());
+    // Groups, repetitions and sub-schemes inside; two parts in one step.
+    ok("{B[pair](1/2) (B[bond](1/8) A(1/4) B[bond](1/8))^4 B[pair](1/2)} O");
+    ok("def H = B(1/4) A(1/2) B(1/4); {H H} Ob");
+    let two = ok("{A(1/4) B(1/2) A(1/4)} L {A(1/4) B(1/2) A(1/4)}");
+    assert_eq!(
+        two.stages.iter().filter(|s| s.flow == Flow::Accept).count(),
+        2
+    );
+    assert!(p.is_symmetric() || !plain.is_symmetric());
+}
+
+/// Bad braces are refused at the brace or letter at fault, saying why the Gibbs measure would
+/// not be exact.
+#[test]
+fn metropolis_adjusted_errors() {
+    assert_eq!(one_err("{B A B O", "unbalanced"), "{");
+    assert_eq!(one_err("B A B} O", "unbalanced"), "}");
+    assert_eq!(one_err("{} A B O", "empty braces"), "{}");
+    assert_eq!(one_err("{B(1/2) {A} B(1/2)} O", "nested braces"), "{");
+    assert_eq!(
+        one_err("def H = {B A B}; {H} O", "nested braces"),
+        "{B A B}"
+    );
+    assert_eq!(
+        one_err("{B(1/2) A O A B(1/2)}", "O cannot stand inside braces"),
+        "O"
+    );
+    assert_eq!(one_err("B {A} O", "B cannot stand outside the braces"), "B");
+    let e = err("{B A B} T");
+    assert!(
+        e.iter()
+            .any(|d| d.message.contains("T cannot stand outside") && d.message.contains("Gibbs")),
+        "{e:?}"
+    );
+    assert_eq!(
+        one_err(
+            "{B(1/3) A B(2/3)} O",
+            "not symmetric: B(1/3) mirrors B(2/3)"
+        ),
+        "{B(1/3) A B(2/3)}"
+    );
+    // A zero stage drops out before the test: this one is B(1) between two A(1/2).
+    ok("{A(1/2) B A(1/2) B(0)} O");
+    one_err("{B A B A} O", "not symmetric");
+    // Merged as the program merges: `B(1/4) B(1/4) A B(1/2)` is symmetric.
+    ok("{B(1/4) B(1/4) A B(1/2)} O");
+}

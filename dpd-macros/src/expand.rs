@@ -134,6 +134,8 @@ fn stage(stage: &Stage, rt: &TokenStream) -> TokenStream {
         (Flow::L, _) => quote!(#rt::collide(sys, #h, #stream, #order);),
         (Flow::Oa, _) => quote!(#rt::adaptive_ou(sys, #h, #stream, #order);),
         (Flow::Xi, _) => quote!(#rt::xi_update(sys, #h);),
+        (Flow::Propose, _) => quote!(#rt::propose(sys);),
+        (Flow::Accept, _) => quote!(#rt::accept(sys, #stream);),
     }
 }
 

@@ -48,6 +48,9 @@ pub struct Aggregate {
     pub heat: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub shadow_work: Option<f64>,
+    /// Mean acceptance of a Metropolis-adjusted scheme over the stable runs.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub acceptance: Option<f64>,
     /// (T_K - k_B T) / k_B T.
     pub kinetic_temperature_error: Option<f64>,
     /// (T_C - k_B T) / k_B T.
@@ -174,6 +177,7 @@ impl Aggregate {
             viscosity: Viscosity::combine(&runs.iter().map(|r| r.viscosity).collect::<Vec<_>>()),
             heat: over(|r| r.heat),
             shadow_work: over(|r| r.shadow_work),
+            acceptance: over(|r| r.acceptance),
             kinetic_temperature_error: relative(kinetic_temperature, Some(kbt)),
             configurational_temperature_error: relative(configurational_temperature, Some(kbt)),
             potential_energy_error: None,

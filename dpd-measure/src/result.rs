@@ -93,6 +93,10 @@ pub struct RunResult {
     /// window (in the steady state about minus the heat).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub shadow_work: Option<f64>,
+    /// With a Metropolis-adjusted scheme (`{...}`): the fraction of its accept/reject tests
+    /// that kept the proposal, over the whole run.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub acceptance: Option<f64>,
 }
 
 impl RunResult {

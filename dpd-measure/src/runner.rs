@@ -90,6 +90,7 @@ pub fn run(
         ms_per_step: per_step(elapsed.as_secs_f64() * 1e3),
         force_evaluations_per_step: per_step(forces as f64),
         pair_distance_evaluations_per_step: per_step(geometry as f64),
+        acceptance: sys.acceptance().rate(),
         ..RunResult::default()
     };
     let end = End {

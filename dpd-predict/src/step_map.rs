@@ -70,6 +70,15 @@ pub enum StepMapError {
          step is not a linear map with Gaussian noise"
     )]
     Adaptive(String),
+    /// Braces: the accept/reject chooses between two states on the energy difference of the
+    /// whole system, so the step is not linear.
+    #[error(
+        "{0} is Metropolis-adjusted ({{...}}), which the predictor does not cover: its \
+         accept/reject keeps the proposal or restores the state with negated momenta on the \
+         energy difference of the whole system, so the step is not a linear map with Gaussian \
+         noise (its invariant measure is exact: there is no bias to predict)"
+    )]
+    Adjusted(String),
 }
 
 impl StepMap {
@@ -181,6 +190,9 @@ impl StepMap {
                 }
                 Flow::L => return Err(StepMapError::Collisions(program.source.clone())),
                 Flow::Oa | Flow::Xi => return Err(StepMapError::Adaptive(program.source.clone())),
+                Flow::Propose | Flow::Accept => {
+                    return Err(StepMapError::Adjusted(program.source.clone()))
+                }
                 Flow::F => {
                     if !valid {
                         cache_at = ForcePoint {

@@ -59,6 +59,17 @@ fn the_adaptive_thermostat_is_refused_by_name() {
     assert!(e.to_string().contains("Oa and Xi (the adaptive"), "{e}");
 }
 
+/// A Metropolis-adjusted step is not linear: the predictor refuses it by name.
+#[test]
+fn a_metropolis_adjusted_step_is_refused_by_name() {
+    let mode = Mode {
+        omega2: 100.0,
+        gamma: 4.5,
+    };
+    let e = StepMap::new(&program("{B(1/2) A B(1/2)} O"), mode, 0.05, 1.0).unwrap_err();
+    assert!(e.to_string().contains("is Metropolis-adjusted"), "{e}");
+}
+
 /// OBABO (velocity Verlet between two half OU steps) samples p exactly and x with variance
 /// 1 / (omega^2 (1 - (omega h / 2)^2)).
 #[test]

@@ -35,6 +35,9 @@ pub struct Check {
     /// Euclidean norm of `first_nonvanishing` over its words (see
     /// [`Analysis::invariant_measure_error_norm`]).
     pub invariant_measure_error_norm: Option<f64>,
+    /// The step has a Metropolis-adjusted part (`{...}`): its invariant measure is the Gibbs
+    /// measure exactly, and the orders are the unadjusted word's.
+    pub metropolis_adjusted: bool,
     pub symmetric: bool,
     /// Pair-force evaluations per step.
     pub force_evaluations_per_step: usize,
@@ -77,6 +80,7 @@ impl Check {
             deterministic_error_norm: a.deterministic_error_norm,
             deterministic_leading_term: a.deterministic_leading_term.clone(),
             invariant_measure_error_norm: a.invariant_measure_error_norm,
+            metropolis_adjusted: a.metropolis_adjusted,
             symmetric: program.is_symmetric(),
             force_evaluations_per_step: cost.force,
             pair_distance_evaluations_per_step: cost.pair_distance,
@@ -101,6 +105,7 @@ impl Check {
             deterministic_error_norm: None,
             deterministic_leading_term: None,
             invariant_measure_error_norm: None,
+            metropolis_adjusted: false,
             symmetric: row.symmetric,
             force_evaluations_per_step: row.force_evaluations_per_step,
             pair_distance_evaluations_per_step: row.pair_distance_evaluations_per_step,

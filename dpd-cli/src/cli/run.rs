@@ -198,6 +198,9 @@ fn print_table(r: &RunReport) {
     if let Some(d) = c.diffusion {
         outln!("diffusion coefficient: {d:.5}");
     }
+    if let Some(a) = c.acceptance {
+        outln!("acceptance (Metropolis-adjusted): {a:.4}");
+    }
     if let (Some(q), Some(w)) = (c.heat, c.shadow_work) {
         outln!("per particle and time unit, in k_B T: heat {q:.4e}, shadow work {w:.4e}");
     }

@@ -83,7 +83,7 @@ pub struct Exported {
 
 /// The program of a registry name or scheme string (its kicks joined by [`joined_kicks`]), or
 /// why it cannot be exported: unknown (the registry's message), hand-written, with an L, Oa or
-/// Xi stage, or inconsistent without `allow_inconsistent`. Every other letter and force group runs in the
+/// Xi stage, Metropolis-adjusted (braces), or inconsistent without `allow_inconsistent`. Every other letter and force group runs in the
 /// plugin (T only with `pair_style dpd/soft`, `B[bond]` only with bonded styles, which the fix
 /// checks).
 pub fn resolve(name: &str, allow_inconsistent: bool) -> Result<Exported, String> {
@@ -132,6 +132,14 @@ pub fn resolve(name: &str, allow_inconsistent: bool) -> Result<Exported, String>
             "scheme '{name}' = {program} has Oa and Xi (the adaptive thermostat, PAdL), which \
              the LAMMPS plugin does not run: its kernels have no adaptive friction xi (export a \
              scheme of A, B, O, Ob, T and F)"
+        ));
+    }
+    if program.is_adjusted() {
+        return Err(format!(
+            "scheme '{name}' = {program} is Metropolis-adjusted ({{...}}), which the LAMMPS \
+             plugin does not run: its accept/reject needs the energy difference of the whole \
+             system over the Hamiltonian part, which the plugin's per-pair kernels do not have \
+             (export a scheme of A, B, O, Ob, T and F)"
         ));
     }
     let program = joined_kicks(program);
@@ -222,8 +230,8 @@ fn c_string(text: &str) -> String {
     out
 }
 
-/// The C++ enumerator of a flow (schemes.h, which has none for L, Oa and Xi: [`resolve`]
-/// refuses them).
+/// The C++ enumerator of a flow (schemes.h, which has none for L, Oa, Xi and the braces:
+/// [`resolve`] refuses them).
 fn flow_name(flow: Flow) -> &'static str {
     match flow {
         Flow::A => "FLOW_A",
@@ -235,6 +243,8 @@ fn flow_name(flow: Flow) -> &'static str {
         Flow::L => "FLOW_L",
         Flow::Oa => "FLOW_OA",
         Flow::Xi => "FLOW_XI",
+        Flow::Propose => "FLOW_PROPOSE",
+        Flow::Accept => "FLOW_ACCEPT",
     }
 }
 
@@ -349,6 +359,11 @@ mod tests {
         assert!(
             padl.contains("Oa and Xi (the adaptive thermostat"),
             "{padl}"
+        );
+        let ghmc = resolve("{B(1/2) A B(1/2)} O", false).unwrap_err();
+        assert!(
+            ghmc.contains("Metropolis-adjusted") && ghmc.contains("energy difference"),
+            "{ghmc}"
         );
         let unknown = resolve("abobq", false).unwrap_err();
         assert!(unknown.contains("unknown scheme 'abobq'"), "{unknown}");

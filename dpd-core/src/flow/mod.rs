@@ -14,6 +14,7 @@
 //! | L | [`collide`] | Lowe-Andersen pairwise collisions, exact in distribution |
 //! | Oa | [`adaptive_ou`] | O at friction `xi gamma_ij`, noise fixed (PAdL), exact per pair |
 //! | Xi | [`xi_update`] | PAdL's friction factor `xi` from the pairs' kinetic excess (exact) |
+//! | `{`, `}` | [`propose`], [`accept`] | Metropolis-adjusted part: keep the state, accept or reject it |
 //!
 //! The pairwise sweeps (O, O-BBK, T, L, Oa) visit the interacting pairs successively in the sweep
 //! order documented in [`crate::neighbour`] for [`SweepOrder::Forward`], and in exactly the
@@ -34,6 +35,7 @@
 //! for the hand-written schemes of `dpd-schemes`.
 
 mod adaptive;
+mod adjusted;
 mod drift;
 mod expm1;
 mod exponential;
@@ -41,6 +43,7 @@ mod kick;
 mod pair_sweep;
 
 pub use adaptive::{adaptive_ou, adaptive_ou_update, xi_update};
+pub use adjusted::{accept, propose};
 pub use drift::drift;
 pub use exponential::{exponential_velocity, EtdNoise};
 pub use kick::{full_force, full_force_group, kick, kick_group};

@@ -87,6 +87,11 @@ pub fn balance_defined(sys: &System, scheme: &dyn Scheme) -> Result<(), ParamErr
                 "has an F stage, an explicit stochastic kick that does not preserve the Gibbs \
                  measure: its energy change is neither heat nor work (valid stages: A, B, O, Ob, L)"
             }
+            Flow::Propose | Flow::Accept => {
+                "is Metropolis-adjusted: its accept/reject keeps or undoes the Hamiltonian part's \
+                 energy change, which the balance of heat and shadow work does not describe \
+                 (valid stages: A, B, O, Ob, L)"
+            }
             Flow::Oa | Flow::Xi => {
                 "has Oa and Xi, the adaptive thermostat, whose friction factor xi carries energy \
                  of its own (mu (xi - 1)^2 / 2): the particles' energy change is neither heat nor \

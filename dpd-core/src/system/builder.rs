@@ -284,6 +284,8 @@ impl SystemBuilder {
             impulses: None,
             heat: None,
             xi: 1.0,
+            proposal: Default::default(),
+            acceptance: Default::default(),
             counters: Counters::default(),
             travel: 0.0,
             drift_bound: 0.0,

@@ -23,6 +23,7 @@ pub(crate) struct Backup {
     impulses: Option<ImpulseVirial>,
     heat: Option<f64>,
     xi: f64,
+    acceptance: super::Acceptance,
     travel: f64,
 }
 
@@ -66,6 +67,7 @@ impl System {
         backup.impulses = self.impulses;
         backup.heat = self.heat;
         backup.xi = self.xi;
+        backup.acceptance = self.acceptance;
         backup.travel = self.travel;
         self.drift_bound = 0.0;
         self.overstretch = None;
@@ -103,6 +105,7 @@ impl System {
                 self.impulses = backup.impulses;
                 self.heat = backup.heat;
                 self.xi = backup.xi;
+                self.acceptance = backup.acceptance;
                 self.travel = backup.travel;
                 Err(BlowUp {
                     step: self.step,

@@ -107,6 +107,10 @@ pub struct System {
     /// PAdL's adaptive friction factor: Oa sweeps with friction `xi gamma_ij`, Xi moves it
     /// (module `crate::flow`). Dimensionless; 1 at construction, where Oa is O.
     xi: f64,
+    /// What the `{` of a Metropolis-adjusted part kept, and the potential energy it reuses.
+    proposal: Proposal,
+    /// The accept/reject tests of Metropolis-adjusted parts so far (checkpointed).
+    acceptance: Acceptance,
     counters: Counters,
     /// Largest single-particle drift length summed over the drifts since the neighbour list
     /// last checked the positions (length units; NaN once a drift length was NaN).
@@ -118,6 +122,7 @@ pub struct System {
     backup: Backup,
 }
 
+mod adjusted;
 mod bonds;
 mod builder;
 mod forces;
@@ -126,6 +131,8 @@ mod records;
 mod resume;
 mod views;
 
+pub use adjusted::Acceptance;
+use adjusted::Proposal;
 pub use builder::SystemBuilder;
 use guard::Backup;
 pub(crate) use records::ImpulseVirial;

@@ -23,6 +23,8 @@ pub(crate) struct Continuation {
     /// The full forces (with their noise) when they are valid at the current positions: what
     /// velocity Verlet carries into its next step.
     pub(crate) full_forces: Option<Vec<Vec3>>,
+    /// The accept/reject tests of Metropolis-adjusted parts so far.
+    pub(crate) acceptance: super::Acceptance,
 }
 
 impl System {
@@ -38,6 +40,7 @@ impl System {
                 .full_at
                 .is_fresh(self.positions)
                 .then(|| self.full.clone()),
+            acceptance: self.acceptance,
         }
     }
 
@@ -50,6 +53,7 @@ impl System {
         self.shear = c.shear;
         self.step = c.step;
         self.travel = c.travel;
+        self.acceptance = c.acceptance;
         if !c.list_reference.is_empty() {
             if c.list_reference.len() != self.len() {
                 return Err(ParamError::new(

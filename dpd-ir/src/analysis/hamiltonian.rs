@@ -55,7 +55,11 @@ pub(crate) fn hamiltonian_factors<S: Scalar>(stages: &[Stage], coeffs: &[S]) -> 
                 .filter(|(_, k)| k.advanced_by(stage.flow, stage.group))
                 .map(|(x, _)| x)
                 .collect(),
-            Flow::O | Flow::Bbk | Flow::L | Flow::Oa | Flow::Xi => continue,
+            // The braces of a Metropolis-adjusted part: the word they hold is analysed
+            // unadjusted.
+            Flow::O | Flow::Bbk | Flow::L | Flow::Oa | Flow::Xi | Flow::Propose | Flow::Accept => {
+                continue
+            }
         };
         match factors.last_mut() {
             Some((last, sum)) if *last == letters => *sum = sum.plus(c),

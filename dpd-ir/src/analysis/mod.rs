@@ -149,6 +149,9 @@ fn analyse_in<S: Scalar>(stages: &[Stage], coeffs: &[S], options: &Options) -> A
         .then(|| hamiltonian::leading_error(&factors, det.order))
         .flatten();
     Analysis {
+        metropolis_adjusted: stages
+            .iter()
+            .any(|s| s.flow == crate::program::Flow::Propose),
         consistent,
         coefficient_sums,
         exact: S::EXACT,

@@ -9,6 +9,11 @@ use super::consistency::CoefficientSums;
 /// The order analysis of one step.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Analysis {
+    /// The step has a Metropolis-adjusted part (`{ ... }`, validated by the language: a
+    /// symmetric A/B word inside, only O, Ob and L outside): its invariant measure is the Gibbs
+    /// measure exactly, at any dt. The orders below are those of the unadjusted word (the
+    /// braces left out), which the adjusted chain follows while it accepts.
+    pub metropolis_adjusted: bool,
     /// Each generator's coefficients sum to one (see [`CoefficientSums::thermostat`]).
     pub consistent: bool,
     pub coefficient_sums: CoefficientSums,
@@ -62,6 +67,16 @@ impl fmt::Display for Analysis {
             at_least(self.deterministic_order_capped),
             self.deterministic_order
         )?;
+        if self.metropolis_adjusted {
+            writeln!(
+                f,
+                "invariant measure: exact, the Gibbs measure exp(-H / k_B T) at any dt \
+                 (Metropolis-adjusted: the symmetric A/B word in braces is reversible and \
+                 volume-preserving, its accept/reject on exp(-Delta H / k_B T) with the momenta \
+                 negated on rejection keeps the measure, and O, Ob and L keep it exactly per \
+                 pair); the orders below are the unadjusted word's"
+            )?;
+        }
         match self.invariant_measure_order {
             Some(p) => writeln!(
                 f,

@@ -72,12 +72,20 @@ pub struct Repeat {
     pub span: Span,
 }
 
+/// A Metropolis-adjusted part `{ steps }`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Adjusted {
+    pub body: Vec<Step>,
+    pub span: Span,
+}
+
 /// One element of a step sequence.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Step {
     Apply(Apply),
     Prk(Prk),
     Repeat(Repeat),
+    Adjusted(Adjusted),
 }
 
 impl Step {
@@ -86,6 +94,7 @@ impl Step {
             Step::Apply(a) => a.span.clone(),
             Step::Prk(p) => p.span.clone(),
             Step::Repeat(r) => r.span.clone(),
+            Step::Adjusted(a) => a.span.clone(),
         }
     }
 }

@@ -1,7 +1,7 @@
 //! Name resolution and expansion of a parsed scheme into the flat sequence of applications,
 //! including the default (implicit) step lengths.
 
-use super::ast::{Apply, Def, Prk, Repeat, Script, Span, Step};
+use super::ast::{Adjusted, Apply, Def, Prk, Repeat, Script, Span, Step};
 use super::diagnostic::{position, Diagnostic};
 use super::expr::{eval, Scope, FUNCTIONS};
 use super::letters::{group, group_spelling, group_spellings, letter, spellings, Letter};
@@ -51,6 +51,7 @@ pub fn expand(
         errors: Vec::new(),
         stack: Vec::new(),
         next_noise: 0,
+        adjusting: false,
     };
     x.define(prelude, true);
     x.consts.extend(bindings.iter().cloned());
@@ -80,6 +81,8 @@ struct Expander<'a> {
     /// Names of the sub-schemes being expanded, outermost first.
     stack: Vec<String>,
     next_noise: usize,
+    /// Inside the braces of a Metropolis-adjusted part.
+    adjusting: bool,
 }
 
 impl<'a> Expander<'a> {
@@ -149,6 +152,7 @@ impl<'a> Expander<'a> {
             Step::Apply(a) => self.apply(a, params, &site, builtin),
             Step::Prk(p) => self.prk(p, params, &site),
             Step::Repeat(r) => self.repeat(r, params, &site, builtin),
+            Step::Adjusted(a) => self.adjusted(a, params, &site, builtin),
         };
         if let Err(mut e) = result {
             if builtin {
@@ -291,6 +295,49 @@ impl<'a> Expander<'a> {
         Ok(())
     }
 
+    /// Where errors of `step`, nested in a repetition or braces at `site`, point: at the top
+    /// level of the scheme each nested step is its own site; inside a sub-scheme the call stays
+    /// the site.
+    fn site_of(&self, step: &Step, site: &Span, builtin: bool) -> Span {
+        if self.stack.is_empty() && !builtin {
+            step.span()
+        } else {
+            site.clone()
+        }
+    }
+
+    /// The body of `a` between the markers `{` ([`Flow::Propose`]) and `}` ([`Flow::Accept`]).
+    /// Braces reached through a sub-scheme called inside braces are nested, and refused.
+    fn adjusted(
+        &mut self,
+        a: &Adjusted,
+        params: &[(String, Value)],
+        site: &Span,
+        builtin: bool,
+    ) -> Result<(), Diagnostic> {
+        if self.adjusting {
+            return Err(Diagnostic::new(
+                "nested braces: a Metropolis-adjusted part cannot hold another (here through a sub-scheme); write one {...} around the whole Hamiltonian part",
+                a.span.clone(),
+            ));
+        }
+        let marker = |flow| Application {
+            flow,
+            group: None,
+            coeff: Value::int(0),
+            order: None,
+            noise: None,
+            span: site.clone(),
+        };
+        self.push(marker(Flow::Propose), true)?;
+        self.adjusting = true;
+        for step in &a.body {
+            self.step(step, params, self.site_of(step, site, builtin), builtin);
+        }
+        self.adjusting = false;
+        self.push(marker(Flow::Accept), true)
+    }
+
     /// The evaluated arguments of `a`, `None` without parentheses.
     fn args(
         &self,
@@ -307,8 +354,7 @@ impl<'a> Expander<'a> {
             .transpose()
     }
 
-    /// Expands the body of `r` as many times as its count says. At the top level of the
-    /// scheme each repeated step is its own site; inside a sub-scheme the call stays the site.
+    /// Expands the body of `r` as many times as its count says (sites as [`Self::site_of`]).
     fn repeat(
         &mut self,
         r: &Repeat,
@@ -324,12 +370,7 @@ impl<'a> Expander<'a> {
         let errors = self.errors.len();
         for _ in 0..count {
             for step in &r.body {
-                let at = if self.stack.is_empty() && !builtin {
-                    step.span()
-                } else {
-                    site.clone()
-                };
-                self.step(step, params, at, builtin);
+                self.step(step, params, self.site_of(step, site, builtin), builtin);
             }
             // One pass reports every error of the body; the expansion limit stops the rest.
             if self.errors.len() > errors || self.out.len() > MAX_APPLICATIONS {

@@ -219,6 +219,7 @@ fn used_names(script: &Script) -> BTreeSet<&str> {
                 exprs.push(&r.count);
                 steps.extend(&r.body);
             }
+            Step::Adjusted(a) => steps.extend(&a.body),
         }
     }
     while let Some(e) = exprs.pop() {

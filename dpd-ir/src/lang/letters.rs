@@ -105,12 +105,16 @@ pub fn letter(spelling: &str) -> Option<&'static Letter> {
     LETTERS.iter().find(|l| l.spelling == spelling)
 }
 
-/// The spelling of `flow`.
+/// The spelling of `flow`: its letter, or the brace `{` or `}` of a Metropolis-adjusted part.
 pub fn spelling(flow: Flow) -> &'static str {
-    LETTERS
-        .iter()
-        .find(|l| l.flow == flow)
-        .map_or("?", |l| l.spelling)
+    match flow {
+        Flow::Propose => "{",
+        Flow::Accept => "}",
+        _ => LETTERS
+            .iter()
+            .find(|l| l.flow == flow)
+            .map_or("?", |l| l.spelling),
+    }
 }
 
 /// The force group spelled `spelling`, if any.

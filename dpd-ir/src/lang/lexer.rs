@@ -18,7 +18,7 @@ pub enum Tok {
     Lower(String),
     /// A number literal as written (`12`, `0.25`, `1e-3`).
     Number(String),
-    /// One of `( ) [ ] , ; = + - * / ^ < >`.
+    /// One of `( ) [ ] { } , ; = + - * / ^ < >`.
     Punct(char),
     /// `..`, the range of a `param` declaration.
     DotDot,
@@ -30,7 +30,7 @@ pub struct Token {
     pub span: Range<usize>,
 }
 
-const PUNCT: &str = "()[],;=+-*/^<>";
+const PUNCT: &str = "()[]{},;=+-*/^<>";
 
 /// Tokens of `src`; unexpected characters are reported and skipped.
 pub fn lex(src: &str) -> (Vec<Token>, Vec<Diagnostic>) {

@@ -9,8 +9,8 @@ pub fn split_schemes(text: &str) -> Result<Vec<String>, String> {
     let (mut depth, mut start) = (0i64, 0);
     for (i, c) in text.char_indices() {
         match c {
-            '(' | '[' => depth += 1,
-            ')' | ']' => depth -= 1,
+            '(' | '[' | '{' => depth += 1,
+            ')' | ']' | '}' => depth -= 1,
             ',' if depth == 0 => {
                 schemes.push(text[start..i].trim().to_string());
                 start = i + 1;

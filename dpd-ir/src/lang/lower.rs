@@ -37,9 +37,9 @@ fn with_sweep_orders(mut apps: Vec<Application>) -> Vec<Application> {
 
 /// Whether two adjacent applications of `flow` are one application of the summed length:
 /// drifts commute, and a kick reuses its force while positions do not change. Sweeps never
-/// merge: each is a separate pass with its own random stream.
+/// merge: each is a separate pass with its own random stream; nor do the braces.
 fn merges(flow: Flow) -> bool {
-    !flow.is_successive_sweep()
+    !flow.is_successive_sweep() && !flow.is_brace()
 }
 
 /// Merges adjacent applications of the same merging flow and force group (`B B[pair]` are two
@@ -70,15 +70,28 @@ fn merge(apps: Vec<Application>) -> Result<Vec<Application>, Vec<Diagnostic>> {
 }
 
 /// Stages of `apps`: each stochastic application takes the next random stream, except that
-/// applications of one frozen-noise group share the stream of the group's first one.
+/// applications of one frozen-noise group share the stream of the group's first one. An
+/// accept/reject `}` draws from a stream apart (so `{B A B} O` sweeps with the noise of
+/// `B A B O`): its stream field numbers the Metropolis-adjusted parts, 0, 1, ...
 fn stages(apps: &[Application]) -> Result<Vec<Stage>, Vec<Diagnostic>> {
     let mut next = 0usize;
+    let mut parts = 0usize;
     let mut groups: HashMap<usize, u8> = HashMap::new();
     let mut errors = Vec::new();
     let mut out = Vec::with_capacity(apps.len());
     for a in apps {
         let mut stream = 0;
-        if a.flow.is_stochastic() {
+        if a.flow == Flow::Accept {
+            let Ok(part) = u8::try_from(parts) else {
+                errors.push(Diagnostic::new(
+                    "scheme has more than 256 Metropolis-adjusted parts per step",
+                    a.span.clone(),
+                ));
+                break;
+            };
+            stream = part;
+            parts += 1;
+        } else if a.flow.is_stochastic() {
             if let Some(&s) = a.noise.and_then(|g| groups.get(&g)) {
                 stream = s;
             } else if let Some(s) = u8::try_from(next).ok().filter(|_| next < MAX_STREAMS) {

@@ -60,6 +60,19 @@
 //! further `(`), which no coefficient does: `A (B A B)^2` is `A` and a repetition,
 //! `A((1/2))` is `A` with one coefficient.
 //!
+//! # Metropolis-adjusted parts
+//!
+//! Braces around the Hamiltonian part of a step, `{B(1/2) A B(1/2)} O`, make it a proposal:
+//! at `{` the state and its energy `H = K + U` are kept, at `}` the state reached is kept with
+//! probability `min(1, exp(-Delta H / k_B T))`, else the kept state returns with its momenta
+//! negated (generalised hybrid Monte Carlo). The step then samples the Gibbs measure
+//! `exp(-H / k_B T)` exactly at any dt, which needs every part to keep it by itself: inside the
+//! braces only `A` and `B` (force groups allowed) in a word that reads the same backwards
+//! with equal fractions, after merging (`B(1/2) A B(1/2)`, `A(1/2) B A(1/2)`, an MTS word),
+//! so that the map is reversible and volume-preserving; outside only `O`, `Ob` and `L`, which
+//! keep the Maxwellian of every pair exactly. Braces do not nest and are not empty; a step may
+//! hold several parts. The braces print without coefficients: `{ B(1/2) A(1) B(1/2) } O(1)`.
+//!
 //! # Step lengths
 //!
 //! A letter with a coefficient in parentheses, `A(1/2)`, runs for `1/2 dt`. Letters written
@@ -155,7 +168,8 @@
 //!         | step ;
 //! step    = Name [ "[" group "]" ] [ "<" | ">" ] [ "(" expr { "," expr } ")" ]
 //!         | "prk" "(" prkarg { "," prkarg } ")"
-//!         | "(" step { step } ")" "^" atom ;
+//!         | "(" step { step } ")" "^" atom
+//!         | "{" step { step } "}" ;
 //! group   = "pair" | "bond" ;
 //! prkarg  = "b" "=" list | "bh" "=" list | "kick" "=" ( "F" | "B" ) ;
 //! list    = "[" expr { "," expr } "]" ;

@@ -1,6 +1,6 @@
 //! Recursive-descent parser from tokens to a [`Script`], with bounded nesting.
 
-use super::ast::{Apply, BinOp, Def, Expr, Let, Param, Prk, Repeat, Script, Span, Step};
+use super::ast::{Adjusted, Apply, BinOp, Def, Expr, Let, Param, Prk, Repeat, Script, Span, Step};
 use super::diagnostic::{position, Diagnostic};
 use super::lexer::{Tok, Token};
 use crate::program::{Flow, SweepOrder};
@@ -38,15 +38,19 @@ pub fn parse(src: &str, tokens: &[Token]) -> Result<Script, Vec<Diagnostic>> {
     }
 }
 
-/// Every unmatched `(`, `)`, `[` or `]`.
+/// Every unmatched `(`, `)`, `[`, `]`, `{` or `}`.
 fn check_brackets(src: &str, tokens: &[Token]) -> Vec<Diagnostic> {
     let mut open: Vec<&Token> = Vec::new();
     let mut errors = Vec::new();
     for t in tokens {
         match t.tok {
-            Tok::Punct('(' | '[') => open.push(t),
-            Tok::Punct(c @ (')' | ']')) => {
-                let want = if c == ')' { '(' } else { '[' };
+            Tok::Punct('(' | '[' | '{') => open.push(t),
+            Tok::Punct(c @ (')' | ']' | '}')) => {
+                let want = match c {
+                    ')' => '(',
+                    ']' => '[',
+                    _ => '{',
+                };
                 match open.pop() {
                     Some(o) if o.tok == Tok::Punct(want) => {}
                     Some(o) => {
@@ -312,6 +316,7 @@ impl Parser<'_> {
                 self.prk(start)
             }
             Some(Tok::Punct('(')) => self.nested(|p| p.repeat(start)),
+            Some(Tok::Punct('{')) => self.nested(|p| p.adjusted(start)),
             Some(Tok::Lower(name)) if ["let", "def", "param"].contains(&name.as_str()) => {
                 Err(Diagnostic::new(
                     format!(
@@ -328,7 +333,7 @@ impl Parser<'_> {
                 self.here(),
             )),
             _ => Err(self.expected(
-                "a sub-flow letter, a sub-scheme, a repetition '(...)^n', 'prk', 'let' or 'def'",
+                "a sub-flow letter, a sub-scheme, a repetition '(...)^n', a Metropolis-adjusted part '{...}', 'prk', 'let' or 'def'",
             )),
         }
     }
@@ -369,6 +374,32 @@ impl Parser<'_> {
         Ok(Step::Repeat(Repeat {
             body,
             count,
+            span: start..self.prev_end(),
+        }))
+    }
+
+    /// `{ steps }`, the `{` next: a Metropolis-adjusted part. Braces do not nest (one
+    /// accept/reject per part; an inner one would have no energy difference of its own to test).
+    fn adjusted(&mut self, start: usize) -> PResult<Step> {
+        self.expect('{', "'{'")?;
+        if self.peek() == Some(&Tok::Punct('}')) {
+            return Err(Diagnostic::new(
+                "empty braces: a Metropolis-adjusted part holds the A and B stages to accept or reject, as in {B(1/2) A B(1/2)} O",
+                start..self.here().end,
+            ));
+        }
+        let mut body = Vec::new();
+        while !self.eat('}') {
+            if self.peek() == Some(&Tok::Punct('{')) {
+                return Err(Diagnostic::new(
+                    "nested braces: a Metropolis-adjusted part cannot hold another; write one {...} around the whole Hamiltonian part",
+                    self.here(),
+                ));
+            }
+            body.push(self.step()?);
+        }
+        Ok(Step::Adjusted(Adjusted {
+            body,
             span: start..self.prev_end(),
         }))
     }
@@ -580,7 +611,7 @@ impl Parser<'_> {
 /// Whether `tok` starts a step inside parentheses: a sub-flow or sub-scheme name, or `prk`.
 fn is_step_start(tok: &Tok) -> bool {
     match tok {
-        Tok::Upper(_) => true,
+        Tok::Upper(_) | Tok::Punct('{') => true,
         Tok::Lower(name) => name == "prk",
         _ => false,
     }

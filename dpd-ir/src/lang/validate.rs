@@ -28,6 +28,7 @@ pub fn validate(apps: &[Application], len: usize, options: &Options) -> Vec<Diag
     errors.extend(has_conservative_force(apps, &whole));
     errors.extend(one_thermostat(apps));
     errors.extend(adaptive_pair(apps));
+    errors.extend(adjusted(apps));
     if !options.allow_inconsistent {
         errors.extend(consistent(apps));
     }
@@ -133,6 +134,102 @@ fn adaptive_pair(apps: &[Application]) -> Option<Diagnostic> {
         (Some(_), Some(_), None) => return None,
     };
     Some(Diagnostic::new(message, at.span.clone()))
+}
+
+/// A Metropolis-adjusted scheme (`{B(1/2) A B(1/2)} O`) samples the Gibbs measure
+/// `exp(-H / k_B T)` exactly when every part of the step leaves it invariant by itself: inside
+/// the braces a deterministic, reversible, volume-preserving map (a symmetric word of A and B:
+/// its inverse is itself with the momenta negated) followed by the accept/reject on
+/// `exp(-Delta H / k_B T)`, with the momenta negated on rejection; outside the braces sweeps
+/// that preserve it exactly per pair (O, Ob and L each move a pair's relative normal velocity
+/// by an autoregression whose stationary law is the Maxwellian, at fixed positions).
+fn adjusted(apps: &[Application]) -> Vec<Diagnostic> {
+    if !apps.iter().any(|a| a.flow.is_brace()) {
+        return Vec::new();
+    }
+    let mut errors = Vec::new();
+    let mut open: Option<&Application> = None;
+    let mut inside: Vec<&Application> = Vec::new();
+    for a in apps {
+        match (a.flow, open) {
+            (Flow::Propose, _) => open = Some(a),
+            (Flow::Accept, Some(brace)) => {
+                errors.extend(asymmetric(&inside, brace));
+                inside.clear();
+                open = None;
+            }
+            (Flow::A | Flow::B, Some(_)) => inside.push(a),
+            (flow, Some(_)) => errors.push(Diagnostic::new(
+                format!(
+                    "{} cannot stand inside braces: the accept/reject keeps the Gibbs measure exact only after a deterministic, reversible, volume-preserving map, a symmetric word of A and B (force groups allowed)",
+                    spelling(flow),
+                ),
+                a.span.clone(),
+            )),
+            (Flow::O | Flow::Bbk | Flow::L, None) => {}
+            (flow, None) => errors.push(Diagnostic::new(
+                format!(
+                    "{} cannot stand outside the braces of a Metropolis-adjusted scheme: {}",
+                    spelling(flow),
+                    match flow {
+                        Flow::A | Flow::B => "it changes the energy, and only inside braces is that change tested; put every A and B inside",
+                        Flow::T | Flow::F => "it does not leave the Gibbs measure invariant (T relaxes pairs towards the conservative force, F is an explicit kick); outside the braces only O, Ob and L, which preserve it exactly per pair, may stand",
+                        _ => "the adaptive thermostat samples a measure extended by xi, not the Gibbs measure; outside the braces only O, Ob and L, which preserve it exactly per pair, may stand",
+                    }
+                ),
+                a.span.clone(),
+            )),
+        }
+    }
+    errors
+}
+
+/// Why the A and B applications `inside` the braces opened at `brace` do not make a symmetric
+/// word, if they do not: merged as the program merges them, mirrored stages must have the same
+/// letter, force group and coefficient. Only then is the map its own inverse up to negated
+/// momenta, which the accept/reject needs to keep the Gibbs measure exact.
+fn asymmetric(inside: &[&Application], brace: &Application) -> Option<Diagnostic> {
+    let mut merged: Vec<(Flow, Option<crate::forces::ForceGroup>, Value)> = Vec::new();
+    for a in inside {
+        match merged.last_mut() {
+            Some((flow, group, c)) if *flow == a.flow && *group == a.group => {
+                *c = c.add(&a.coeff).ok()?;
+            }
+            _ => merged.push((a.flow, a.group, a.coeff.clone())),
+        }
+        if merged.last().is_some_and(|(_, _, c)| c.is_zero()) {
+            merged.pop();
+        }
+    }
+    let spell = |(flow, group, c): &(Flow, Option<crate::forces::ForceGroup>, Value)| match group {
+        Some(g) => format!(
+            "{}[{}]({c})",
+            spelling(*flow),
+            super::letters::group_spelling(*g)
+        ),
+        None => format!("{}({c})", spelling(*flow)),
+    };
+    let n = merged.len();
+    let (x, y) =
+        merged
+            .iter()
+            .zip(merged.iter().rev())
+            .take(n / 2)
+            .find(|((f, g, c), (f2, g2, c2))| {
+                let same = match (c.to_coeff(), c2.to_coeff()) {
+                    (Ok(a), Ok(b)) => crate::program::coeffs_equal(&a, &b),
+                    _ => false,
+                };
+                !(f == f2 && g == g2 && same)
+            })?;
+    Some(Diagnostic::new(
+        format!(
+            "the word inside the braces is not symmetric: {} mirrors {}; the accept/reject keeps the Gibbs measure exact only for a reversible proposal, a word that reads the same backwards with equal fractions, as B(1/2) A B(1/2) or A(1/2) B A(1/2)",
+            spell(x),
+            spell(y)
+        ),
+        brace.span.clone(),
+    ))
 }
 
 /// A generator of the DPD dynamics (algorithms.md section 4): the drift, a kick (all forces,
