@@ -22,6 +22,7 @@
 //! | [`exponential`] | SETD, MSETD for small masses |
 //! | [`lowe`] | Lowe-Andersen collisions: Lowe's velocity Verlet + L, the ABOBA ordering ABLBA |
 //! | [`adaptive`] | the pairwise adaptive Langevin thermostat (PAdL) in the BAOAB and ABOBA orderings |
+//! | [`adjusted`] | Metropolis-adjusted (generalised hybrid Monte Carlo): velocity Verlet in braces, then O |
 //!
 //! [`check`] reports the analysis of a registry name or a scheme string (`dpd check`).
 //! [`stability`] runs every registered scheme over a matrix of friction, mass and time step.
@@ -31,6 +32,7 @@
 //! checkpoint), so it could not restart exactly.
 
 pub mod adaptive;
+pub mod adjusted;
 pub mod check;
 pub mod composition;
 pub mod exponential;

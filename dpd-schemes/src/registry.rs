@@ -10,7 +10,9 @@ use dpd_ir::lang::{Diagnostic, Options};
 use serde::Serialize;
 use thiserror::Error;
 
-use crate::{adaptive, composition, exponential, langevin, lowe, prk, shardlow, trotter, verlet};
+use crate::{
+    adaptive, adjusted, composition, exponential, langevin, lowe, prk, shardlow, trotter, verlet,
+};
 
 /// What the catalogue claims about a scheme, written once here.
 ///
@@ -225,7 +227,7 @@ const PRK_DPD: &str = "Fluids 4, 156 (2019), doi:10.3390/fluids4030156";
 const ETD: &str =
     "N. Phan-Thien, N. Mai-Duy, D. Pan and B. C. Khoo, Comput. Phys. Commun. 185, 229 (2014)";
 
-static ENTRIES: [Entry; 25] = [
+static ENTRIES: [Entry; 26] = [
     entry(
         "vv",
         &["velocity-verlet", "groot-warren", "gw"],
@@ -333,6 +335,18 @@ static ENTRIES: [Entry; 25] = [
         || Box::new(adaptive::padl_aboba()),
         None,
         splitting(1, 1, 2, None, true),
+    ),
+    entry(
+        "ghmc",
+        &["aboba-mh"],
+        "Metropolis-adjusted: velocity Verlet in braces, accepted on exp(-Delta H / kT), then O; the Gibbs measure exactly at any dt, acceptance falling with N dt^6",
+        "A. M. Horowitz, Phys. Lett. B 268, 247 (1991) (generalised HMC); pairwise O: this crate (issue 49)",
+        || Box::new(adjusted::ghmc()),
+        None,
+        Claims {
+            momentum_conserving: false,
+            ..splitting(1, 1, 2, Some(2), false)
+        },
     ),
     entry(
         "sas",
