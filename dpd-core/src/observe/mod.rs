@@ -31,16 +31,5 @@ use crate::system::System;
 /// each pair's repulsion (without moving the neighbour-list rebuilds, see
 /// `System::with_forces`).
 fn pair_sum<T: std::iter::Sum>(sys: &mut System, term: impl Fn(Soft, &Pair) -> T) -> T {
-    sys.with_forces(|sys, pairs, _| {
-        let kind = sys.kinds();
-        pairs
-            .iter()
-            .map(|pair| {
-                let soft = sys
-                    .params()
-                    .soft(kind[pair.i as usize], kind[pair.j as usize]);
-                term(soft, pair)
-            })
-            .sum()
-    })
+    sys.with_forces(|sys, pairs, _| pairs.sum_soft(sys.params(), sys.kinds(), term))
 }

@@ -17,6 +17,8 @@ pub(crate) use exclude::{Excluding, Exclusions};
 use crate::chunked::Parts;
 use crate::disjoint::Disjoint;
 use crate::neighbour::Runs;
+use crate::params::Params;
+use crate::potential::Soft;
 use crate::rng::pair_normals;
 use crate::{Tensor, Vec3};
 
@@ -101,6 +103,24 @@ impl PairTable {
     /// `v_ij = v_i - v_j + (dvx, 0, 0)`. Zero for every other pair.
     pub fn shifts(&self) -> Option<&[f64]> {
         self.shifted.then_some(&self.shifts)
+    }
+
+    /// `sum_pairs term(soft_ij, pair)` in table order (the same on any thread count), with
+    /// each pair's repulsion from `params` for the particle kinds `kind` (storage order).
+    pub(crate) fn sum_soft<T: std::iter::Sum>(
+        &self,
+        params: &Params,
+        kind: &[u16],
+        term: impl Fn(Soft, &Pair) -> T,
+    ) -> T {
+        self.iter()
+            .map(|pair| {
+                term(
+                    params.soft(kind[pair.i as usize], kind[pair.j as usize]),
+                    pair,
+                )
+            })
+            .sum()
     }
 }
 

@@ -51,15 +51,9 @@ impl System {
             return self.proposal.potential;
         }
         self.ensure_pairs();
-        let (params, kind) = (&self.params, &self.kind);
         let pairs: f64 = self
             .pairs
-            .iter()
-            .map(|pair| {
-                let soft = params.soft(kind[pair.i as usize], kind[pair.j as usize]);
-                soft.energy(pair.w)
-            })
-            .sum();
+            .sum_soft(&self.params, &self.kind, |soft, pair| soft.energy(pair.w));
         self.proposal.potential = pairs + self.bonded_energy();
         self.proposal.potential_at = Stamp::at(self.positions);
         self.proposal.potential
