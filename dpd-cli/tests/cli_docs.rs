@@ -247,7 +247,7 @@ fn outputs() -> BTreeMap<&'static str, Vec<Value>> {
         d,
         "observed.toml",
         &format!(
-            "{tiny}energy_balance = true\n[rdf]\nr_max = 1.5\nbins = 10\ninterval = 0.2\n\
+            "{tiny}energy_balance = true\nprocessing = 0.1\n[rdf]\nr_max = 1.5\nbins = 10\ninterval = 0.2\n\
              [vacf]\nmax_lag = 0.3\norigin_every = 2\n[trajectory]\nfile = \"t.xyz\"\n\
              every = 0.5\n"
         ),

@@ -196,6 +196,40 @@ mod tests {
     }
 
     #[test]
+    fn processing_reads_the_positional_observables_off_an_untouched_trajectory() {
+        let scheme = resolve("aboba").unwrap();
+        let run_with = |c: Option<f64>| {
+            let mut scene = tiny();
+            if let Some(c) = c {
+                scene.observe.processing = c;
+            }
+            let r = run(
+                &scene,
+                &job("aboba", 0.05, 3),
+                &scheme,
+                quiet(&AtomicBool::new(false)),
+            );
+            let r = r.unwrap();
+            let t = r.kinetic_temperature.unwrap();
+            let positional = [
+                r.configurational_temperature,
+                r.potential_energy,
+                r.pressure,
+            ];
+            (t, positional.map(Option::unwrap))
+        };
+        let plain = run_with(None);
+        // c = 0 is the unprocessed observable, bit for bit.
+        assert_eq!(run_with(Some(0.0)), plain);
+        // Processing measures on a copy: the trajectory, and so T_K, is the same to the bit.
+        let (t, [tc, u, _]) = run_with(Some(0.5));
+        assert_eq!(t, plain.0);
+        // A step along the forces lowers T_C (on a harmonic mode by (1 - c omega2 dt^2)^2)
+        // and the potential energy.
+        assert!(tc < plain.1[0] && u < plain.1[1], "{tc} {u} {plain:?}");
+    }
+
+    #[test]
     fn a_blow_up_is_a_result() {
         let scheme = resolve("vv").unwrap();
         let r = run(

@@ -11,7 +11,8 @@ use serde::Serialize;
 /// with the leading anharmonic correction when the spectrum has a response
 /// ([`crate::anharmonic`]).
 ///
-/// With `ex_k = omega2_k <x_k^2> / k_B T - 1` and `ep_k = <p_k^2> / k_B T - 1` the relative
+/// With `ex_k = omega2_k <x_k^2> / k_B T - 1` (`x_k` processed when the predictor is,
+/// [`Predictor::processed`]) and `ep_k = <p_k^2> / k_B T - 1` the relative
 /// errors of mode k's configurational and kinetic variances: T_C = `<|F|^2> / <lap U>` of the
 /// modes is off by `sum omega2_k ex_k / sum omega2_k`, T_K by the mean of `ep_k`, the
 /// potential energy per particle by `k_B T sum ex_k / (2 N)`, and the pressure by
@@ -85,6 +86,10 @@ pub const SEARCH_DT_MAX: f64 = 2.0;
 const SEARCH_FACTOR: f64 = 1.03;
 const REFINE: f64 = 1e-6;
 
+/// The step at which [`Predictor::leading_processing`] cancels the error: small enough for
+/// the leading term to dominate on the standard box's stiffest modes (`omega dt` about 0.16).
+pub const PROCESSING_DT: f64 = 0.01;
+
 /// Predictions of programs on one spectrum (its modes grouped, [`Spectrum::grouped`]).
 #[derive(Clone, Debug)]
 pub struct Predictor {
@@ -93,6 +98,9 @@ pub struct Predictor {
     volume: f64,
     kbt: f64,
     response: Option<f64>,
+    /// `c` of the position processor `x + c dt^2 F(x) / m` the observables are read at
+    /// ([`Predictor::processed`]); 0: unprocessed.
+    processing: f64,
 }
 
 impl Predictor {
@@ -103,7 +111,45 @@ impl Predictor {
             volume: spectrum.volume,
             kbt: spectrum.kbt,
             response: spectrum.response.map(|r| r.r),
+            processing: 0.0,
         }
+    }
+
+    /// The same predictions for observables read at the processed positions `x + c dt^2
+    /// F(x) / m` (Vilmart's postprocessing with one force evaluation per sample; the
+    /// trajectory is unchanged). On a mode `x` is scaled by `1 - c omega2 dt^2`, so its
+    /// variance by the square: exact for the harmonic part. The anharmonic correction stays
+    /// that of the unprocessed measure: how processing moves T_C through the pairs entering
+    /// and leaving the cut-off is not modelled.
+    pub fn processed(mut self, c: f64) -> Self {
+        self.processing = c;
+        self
+    }
+
+    /// The processing `c` that cancels the leading `dt^2` term of the predicted T_C error, so
+    /// that the processed average is of higher order (the aim of Vilmart's postprocessors):
+    /// the `c` of smallest magnitude that zeroes the error at [`PROCESSING_DT`] (the error is
+    /// quadratic in `c`, so three evaluations give it exactly), or the `c` of the smallest
+    /// error if none does. `None` when the program is unstable there.
+    pub fn leading_processing(&self, program: &Program) -> Result<Option<f64>, StepMapError> {
+        let mut e = [0.0; 3];
+        for (k, c) in [-1.0, 0.0, 1.0].into_iter().enumerate() {
+            match self.clone().processed(c).errors(program, PROCESSING_DT)? {
+                Some(errors) => e[k] = errors.configurational_temperature,
+                None => return Ok(None),
+            }
+        }
+        // e(c) = a c^2 + b c + e0.
+        let (a, b, e0) = ((e[2] + e[0]) / 2.0 - e[1], (e[2] - e[0]) / 2.0, e[1]);
+        let disc = b * b - 4.0 * a * e0;
+        Ok(Some(if a == 0.0 {
+            -e0 / b
+        } else if disc < 0.0 {
+            -b / (2.0 * a)
+        } else {
+            // The root nearer zero, in the form that does not cancel.
+            2.0 * e0 / (-b - b.signum() * disc.sqrt())
+        }))
     }
 
     /// How many groups of modes the predictions solve for.
@@ -128,7 +174,8 @@ impl Predictor {
                     None => return Ok(None),
                 }
             }
-            let ex = mode.omega2 * c[(0, 0)] / kbt - 1.0;
+            let scale = 1.0 - self.processing * mode.omega2 * dt * dt;
+            let ex = mode.omega2 * scale * scale * c[(0, 0)] / kbt - 1.0;
             let ep = c[(1, 1)] / kbt - 1.0;
             modes += weight;
             sum_w2 += weight * mode.omega2;

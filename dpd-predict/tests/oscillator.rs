@@ -210,3 +210,47 @@ fn grouped_modes_predict_what_all_modes_do() {
         assert_relative_eq!(tc.configurational_temperature, all, max_relative = 0.01);
     }
 }
+
+/// Observables read at the processed positions `x + c dt^2 F`: ABOBA's exact `<x^2>` scaled by
+/// `(1 - c omega2 dt^2)^2`, and OBABO's `1 / (omega2 (1 - y))`, `y = (omega dt / 2)^2`, with c
+/// = 1/8 becomes `(1 - y/2)^2 / (omega2 (1 - y))`: its T_C error drops from `y / (1 - y)` to
+/// `y^2 / (4 (1 - y))`, fourth order (the processor cancels Verlet's `dt^2` term on every
+/// mode).
+#[test]
+fn processing_scales_the_sampled_positions() {
+    for (omega2, gamma, dt) in [(100.0, 4.5, 0.08), (100.0, 200.0, 0.15), (1.0, 0.3, 1.5)] {
+        let p = Predictor::new(&Spectrum::oscillator(omega2, gamma, 1.0));
+        let tc = |scheme: &str, c: f64| {
+            let e = p.clone().processed(c).errors(&program(scheme), dt);
+            e.unwrap().unwrap().configurational_temperature
+        };
+        let h2 = omega2 * dt * dt;
+        for c in [0.0, 0.1, -0.3] {
+            let s = 1.0 - c * h2;
+            assert_relative_eq!(tc("ABOBA", c), s * s - 1.0, epsilon = 1e-10);
+        }
+        let y = h2 / 4.0;
+        assert_relative_eq!(tc("OBABO", 0.0), y / (1.0 - y), max_relative = 1e-9);
+        assert_relative_eq!(
+            tc("OBABO", 0.125),
+            y * y / (4.0 * (1.0 - y)),
+            max_relative = 1e-9,
+            epsilon = 1e-12
+        );
+    }
+}
+
+/// The processing that cancels the leading error: none for BAOAB (exact on a harmonic
+/// mode), Verlet's 1/8 for OBABO, up to its `dt^2` correction at `PROCESSING_DT` (the root of
+/// `(1 - c omega2 dt^2)^2 = 1 - (omega dt / 2)^2`).
+#[test]
+fn the_leading_processing_cancels_the_dt2_term() {
+    let p = Predictor::new(&Spectrum::oscillator(100.0, 4.5, 1.0));
+    let c = p.leading_processing(&program("BAOAB")).unwrap().unwrap();
+    assert!(c.abs() < 1e-9, "{c}");
+    let h2 = 100.0 * dpd_predict::predict::PROCESSING_DT.powi(2);
+    let exact = (1.0 - (1.0 - h2 / 4.0).sqrt()) / h2;
+    let c = p.leading_processing(&program("OBABO")).unwrap().unwrap();
+    assert_relative_eq!(c, exact, max_relative = 1e-7);
+    assert_relative_eq!(c, 0.125, max_relative = 2e-3);
+}

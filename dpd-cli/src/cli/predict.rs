@@ -28,6 +28,11 @@ pub struct Args {
     dt: Vec<f64>,
     #[command(flatten)]
     spectrum: SpectrumArgs,
+    /// Read the observables at the processed positions x + C dt^2 F(x) / m (one force
+    /// evaluation per sample): a number C, or `leading` for the C that cancels the leading
+    /// dt^2 term of the predicted T_C error, per scheme
+    #[arg(long, value_name = "C|leading", value_parser = processing, allow_negative_numbers = true)]
+    processing: Option<Processing>,
     /// Print one JSON object on stdout
     #[arg(long)]
     json: bool,
@@ -123,10 +128,31 @@ struct Output {
     schemes: Vec<SchemeOutput>,
 }
 
+/// `--processing`: a given C or the one that cancels the leading error.
+#[derive(Clone, Copy, Debug)]
+enum Processing {
+    Given(f64),
+    Leading,
+}
+
+fn processing(text: &str) -> Result<Processing, String> {
+    if text == "leading" {
+        return Ok(Processing::Leading);
+    }
+    match text.parse::<f64>() {
+        Ok(c) if c.is_finite() => Ok(Processing::Given(c)),
+        _ => Err(format!(
+            "invalid --processing = {text}: allowed are a finite number C or `leading`"
+        )),
+    }
+}
+
 #[derive(Debug, Serialize)]
 struct SchemeOutput {
     scheme: String,
     program: String,
+    /// C of the position processor the observables are read at (0: unprocessed).
+    processing: f64,
     #[serde(flatten)]
     prediction: Prediction,
     /// Milliseconds of the prediction itself (the spectrum is shared).
@@ -162,13 +188,34 @@ pub fn main(args: Args) -> ExitCode {
     let mut schemes = Vec::new();
     for (name, program) in programs {
         let start = Instant::now();
-        let prediction = match predictor.predict(&program, &args.dt) {
+        let c = match args.processing {
+            None => Ok(0.0),
+            Some(Processing::Given(c)) => Ok(c),
+            Some(Processing::Leading) => match predictor.leading_processing(&program) {
+                Ok(Some(c)) => Ok(c),
+                Ok(None) => {
+                    return bad_input(format!(
+                        "scheme {name} is unstable at dt {}: no processing to choose",
+                        dpd_predict::predict::PROCESSING_DT
+                    ))
+                }
+                Err(e) => Err(e),
+            },
+        };
+        let predicted = c.and_then(|c| {
+            Ok((
+                c,
+                predictor.clone().processed(c).predict(&program, &args.dt)?,
+            ))
+        });
+        let (processing, prediction) = match predicted {
             Ok(p) => p,
             Err(e) => return bad_input(format!("scheme {name}: {e}")),
         };
         schemes.push(SchemeOutput {
             scheme: name,
             program: program.to_string(),
+            processing,
             prediction,
             milliseconds: start.elapsed().as_secs_f64() * 1e3,
         });
@@ -261,6 +308,9 @@ fn print_text(out: &Output) {
     }
     for s in &out.schemes {
         outln!("\n{} = {}", s.scheme, s.program);
+        if s.processing != 0.0 {
+            outln!("observables at x + {} dt^2 F(x) / m", s.processing);
+        }
         outln!(
             "{:>8}  {:>9}  {:>9}  {:>10}  {:>10}",
             "dt",

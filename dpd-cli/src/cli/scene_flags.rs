@@ -79,6 +79,11 @@ pub struct SceneFlags {
     #[arg(long)]
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub energy_balance: bool,
+    /// Read T_C, U and the virial at the processed positions x + C dt^2 F(x) / m (one more
+    /// force evaluation per sample; 0: unprocessed)
+    #[arg(long, value_name = "C", allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub processing: Option<f64>,
 }
 
 /// The `[sweep]` keys that have flags.

@@ -1,8 +1,10 @@
 //! The thermodynamics every run averages over its window: T_K, T_C (a ratio of averages), the
-//! potential energy per particle and the virial pressure.
+//! potential energy per particle and the virial pressure; with `processing = c` the positional
+//! ones read at `x + c dt^2 F(x) / m` (Vilmart's postprocessing), on a copy of the system.
 
 use super::interface::{Boxed, End, Observer, Setup};
 use crate::result::RunResult;
+use dpd_core::observe::Thermo as State;
 use dpd_core::observe::{thermo, ThermoAverages};
 use dpd_core::{ParamError, System};
 
@@ -10,17 +12,65 @@ struct Thermo {
     averages: ThermoAverages,
     /// Between walls T_C and the periodic virial pressure are not the bulk quantities.
     walls: bool,
+    /// `c dt^2` of the position processor (0: unprocessed).
+    processing: f64,
 }
 
-pub(super) fn new<'a>(setup: &Setup<'a>, _: &mut System) -> Result<Option<Boxed<'a>>, ParamError> {
+pub(super) fn new<'a>(
+    setup: &Setup<'a>,
+    sys: &mut System,
+) -> Result<Option<Boxed<'a>>, ParamError> {
     let averages = ThermoAverages::new(setup.steps, setup.scene.run.average_fraction)?;
     let walls = setup.scene.geometry.walls.is_some();
-    Ok(Some(Box::new(Thermo { averages, walls })))
+    let c = setup.scene.observe.processing;
+    if c != 0.0 && sys.topology().is_some() {
+        // Bonds from an init data file (the scene's own chains are refused by its check).
+        return Err(ParamError::new(
+            "processing",
+            c,
+            "the system has bonds: processing is for pair forces only (0 turns it off)",
+        ));
+    }
+    let processing = c * setup.dt * setup.dt;
+    Ok(Some(Box::new(Thermo {
+        averages,
+        walls,
+        processing,
+    })))
+}
+
+/// The thermodynamics at the processed positions `x + k F(x) / m`, measured on a copy, with
+/// T_K of the system itself. The unprocessed measurement is made first: it restarts the
+/// neighbour list's travel, which decides the later rebuilds and so the sweep order, and the
+/// trajectory must be the bits of an unprocessed run.
+fn processed(sys: &mut System, k: f64) -> Result<State, ParamError> {
+    let plain = thermo(sys);
+    let mut copy = sys.clone();
+    // Forces first: evaluating them may re-sort the copy's particles.
+    let force = copy.conservative_forces().to_vec();
+    let q: Vec<_> = copy
+        .positions()
+        .iter()
+        .zip(&force)
+        .zip(copy.masses())
+        .map(|((x, f), m)| x + f * (k / m))
+        .collect();
+    copy.set_positions(&q)?;
+    Ok(State {
+        // The copy's particles may be re-sorted: the same T_K, summed in another order.
+        kinetic_temperature: plain.kinetic_temperature,
+        ..thermo(&mut copy)
+    })
 }
 
 impl Observer for Thermo {
     fn sample(&mut self, sys: &mut System, _: u64) -> Result<(), ParamError> {
-        self.averages.record(&thermo(sys));
+        let state = if self.processing == 0.0 {
+            thermo(sys)
+        } else {
+            processed(sys, self.processing)?
+        };
+        self.averages.record(&state);
         Ok(())
     }
 

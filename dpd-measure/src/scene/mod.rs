@@ -13,7 +13,7 @@
 //! | [`Species`] | `species.rs` | `[[species]]`, `[pairs]` |
 //! | [`Molecules`] | `molecules.rs` | `[[bond_types]]`, `[[angle_types]]`, `[[molecules]]`, `exclude_bonded` |
 //! | [`Geometry`] | `geometry.rs` | `n`, `density`, `box`, `skin`, `init`, `init_reset`, `[walls]` |
-//! | [`Observe`] | `observe.rs` | `[rdf]`, `[vacf]`, `[profile]`, `energy_balance`, `like_neighbours` |
+//! | [`Observe`] | `observe.rs` | `[rdf]`, `[vacf]`, `[profile]`, `energy_balance`, `like_neighbours`, `processing` |
 //! | [`Output`] | `output.rs` | `description`, `[trajectory]`, `write_data` |
 //! | [`SweepSpec`] | `sweep.rs` | `[sweep]` |
 //!
@@ -178,6 +178,29 @@ impl Scene {
         let init = self.geometry.init.is_some();
         self.molecules.check_exclusion(chains || init)?;
         self.observe.validate(self.geometry.shortest_edge()?)?;
+        if self.observe.processing != 0.0 {
+            let other = if self.geometry.walls.is_some() {
+                Some("walls")
+            } else if self.physics.sheared() {
+                Some("a shear rate")
+            } else if self.physics.body_force.is_some() {
+                Some("a body force")
+            } else if chains {
+                Some("bonds")
+            } else {
+                None
+            };
+            if let Some(other) = other {
+                return Err(ParamError::new(
+                    "processing",
+                    self.observe.processing,
+                    format!(
+                        "the scene has {other}: processing is for the periodic bulk at \
+                         equilibrium with pair forces only (0 turns it off)"
+                    ),
+                ));
+            }
+        }
         self.output.validate()?;
         if let Some(w) = &self.sweep {
             let walls = self.geometry.walls.is_some();

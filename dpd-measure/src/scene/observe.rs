@@ -5,8 +5,8 @@ use super::check::{positive, require};
 use dpd_core::ParamError;
 use serde::{Deserialize, Serialize};
 
-/// Tables `[rdf]`, `[vacf]`, `[profile]` and the keys `energy_balance`, `like_neighbours`; a
-/// scene without them does not pay for them.
+/// Tables `[rdf]`, `[vacf]`, `[profile]` and the keys `energy_balance`, `like_neighbours`,
+/// `processing`; a scene without them does not pay for them.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Observe {
@@ -21,6 +21,15 @@ pub struct Observe {
     /// over the pairs at every sample).
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub like_neighbours: bool,
+    /// `c` of the position processor: T_C, the potential energy and the pressure's virial
+    /// are read at `x + c dt^2 F(x) / m` (one more force evaluation per sample, on a copy:
+    /// the trajectory is unchanged). 0: at `x`, unprocessed.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub processing: f64,
+}
+
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
 }
 
 /// Radial distribution function accumulated over the averaging window.
@@ -84,6 +93,12 @@ impl Default for ProfileSpec {
 impl Observe {
     /// Check the tables against a box whose shortest edge is `edge`.
     pub fn validate(&self, edge: f64) -> Result<(), ParamError> {
+        require(
+            "processing",
+            self.processing,
+            self.processing.is_finite(),
+            "must be a finite number (0: unprocessed)",
+        )?;
         if let Some(p) = &self.profile {
             require("profile.bins", p.bins, p.bins >= 1, "must be at least 1")?;
             require(

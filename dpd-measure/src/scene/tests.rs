@@ -58,6 +58,11 @@ fn unknown_keys_and_invalid_values_name_the_key() {
         ("[sweep]\ndt_factor = 1.0", "sweep.dt_factor"),
         ("[sweep]\ndt_min = 0.1\ndt_max = 0.01", "sweep.dt_max"),
         ("[sweep]\nreference = \"abo\"", "sweep.reference"),
+        ("processing = nan", "processing"),
+        (
+            "processing = 0.1\nshear_rate = 0.2",
+            "processing = 0.1: the scene has a shear rate",
+        ),
         (
             "[trajectory]\nfile = \"t.gsd\"\nevery = 0.0",
             "trajectory.every",
