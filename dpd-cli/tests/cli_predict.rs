@@ -89,6 +89,34 @@ fn bad_input_is_refused_naming_the_flag() {
     refused(&dpd(&tmp(), &["predict", "aboba", "--dt", "-1"]), "--dt");
     refused(&dpd(&tmp(), &["predict", "gw-0.65"]), "hand-written");
     refused(&dpd(&tmp(), &["predict", "ABQ"]), "scheme");
+    refused(
+        &dpd(&tmp(), &["predict", "aboba", "--processing", "best"]),
+        "--processing = best",
+    );
+    refused(
+        &dpd(&tmp(), &["predict", "aboba", "--processing", "inf"]),
+        "--processing = inf",
+    );
+}
+
+/// `--processing leading` reads OBAB's positions where its leading T_C error cancels: its
+/// predicted error at dt 0.05 drops (8.5 % unprocessed on the standard box).
+#[test]
+fn the_leading_processing_shrinks_obab_s_error() {
+    let error = |extra: &[&str]| {
+        let args = [&["predict", "OBAB", "--dt", "0.05", SMALL, "--json"], extra].concat();
+        let v = json(&dpd(&tmp(), &args));
+        let s = &v["schemes"][0];
+        let e = s["rows"][0]["configurational_temperature"]
+            .as_f64()
+            .unwrap();
+        (s["processing"].as_f64().unwrap(), e)
+    };
+    let (c0, plain) = error(&[]);
+    let (c, processed) = error(&["--processing", "leading"]);
+    assert_eq!(c0, 0.0);
+    assert!(c > 0.05 && c < 0.2, "{c}");
+    assert!(processed.abs() < plain.abs() / 3.0, "{processed} {plain}");
 }
 
 #[test]
