@@ -38,16 +38,17 @@ fn same_on_any_thread_count(
 fn trajectory_is_identical_for_any_thread_count() {
     // About 20 000 interacting pairs: the sweeps run in parallel, and their runs are grouped
     // differently for each thread count. BAOOAB sweeps the second time in reverse; TAT has
-    // the T sweep.
+    // the T sweep; B A B O is Peters' scheme (the registry's peters).
     let big_box = || common::system(3000, 3.0, Params::builder(), 0.04, 17);
     let compiled = |source: &str| DynScheme::compile(source, source, &Default::default()).unwrap();
-    let (baooab, tat) = (compiled("BAOOAB"), compiled("TAT"));
+    let (baooab, tat, peters) = (compiled("BAOOAB"), compiled("TAT"), compiled("B A B O"));
     for scheme in [
         &Aboba as &(dyn Scheme + Sync),
         &DpdS1,
         &VelocityVerlet,
         &baooab,
         &tat,
+        &peters,
     ] {
         same_on_any_thread_count(scheme, &[1, 2, 3, 5], big_box, 40);
     }

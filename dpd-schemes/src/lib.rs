@@ -22,6 +22,7 @@
 //! | [`exponential`] | SETD, MSETD for small masses |
 //! | [`lowe`] | Lowe-Andersen collisions: Lowe's velocity Verlet + L, the ABOBA ordering ABLBA |
 //! | [`adaptive`] | the pairwise adaptive Langevin thermostat (PAdL) in the BAOAB and ABOBA orderings |
+//! | [`peters`] | Peters' scheme: velocity Verlet, then Peters' pair thermostat (= the O sweep) |
 //! | [`adjusted`] | Metropolis-adjusted (generalised hybrid Monte Carlo): velocity Verlet in braces, then O |
 //!
 //! [`check`] reports the analysis of a registry name or a scheme string (`dpd check`).
@@ -38,6 +39,7 @@ pub mod composition;
 pub mod exponential;
 pub mod langevin;
 pub mod lowe;
+pub mod peters;
 pub mod prk;
 pub mod registry;
 pub mod shardlow;

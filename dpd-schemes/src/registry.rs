@@ -11,7 +11,8 @@ use serde::Serialize;
 use thiserror::Error;
 
 use crate::{
-    adaptive, adjusted, composition, exponential, langevin, lowe, prk, shardlow, trotter, verlet,
+    adaptive, adjusted, composition, exponential, langevin, lowe, peters, prk, shardlow, trotter,
+    verlet,
 };
 
 /// What the catalogue claims about a scheme, written once here.
@@ -227,7 +228,7 @@ const PRK_DPD: &str = "Fluids 4, 156 (2019), doi:10.3390/fluids4030156";
 const ETD: &str =
     "N. Phan-Thien, N. Mai-Duy, D. Pan and B. C. Khoo, Comput. Phys. Commun. 185, 229 (2014)";
 
-static ENTRIES: [Entry; 26] = [
+static ENTRIES: [Entry; 27] = [
     entry(
         "vv",
         &["velocity-verlet", "groot-warren", "gw"],
@@ -317,6 +318,15 @@ static ENTRIES: [Entry; 26] = [
         || Box::new(lowe::ablba()),
         None,
         splitting(1, 1, 2, Some(2), true),
+    ),
+    entry(
+        "peters",
+        &["vv-peters"],
+        "Peters' scheme: velocity Verlet, then Peters' pair thermostat, which is the exact O sweep",
+        "E. A. J. F. Peters, Europhys. Lett. 66, 311 (2004)",
+        || Box::new(peters::peters()),
+        None,
+        splitting(1, 1, 2, Some(2), false),
     ),
     entry(
         "padl",
