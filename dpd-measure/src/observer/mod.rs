@@ -4,7 +4,7 @@
 //!
 //! | file | measures | switched on by |
 //! |---|---|---|
-//! | `thermo.rs` | T_K, T_C, U, P averaged over the window | always |
+//! | `thermo.rs` | T_K, T_C, U, P over the window (`processing`: at processed positions) | always |
 //! | `rdf.rs` | g(r) | `[rdf]` |
 //! | `pair_rdf.rs` | g(r) of each pair of species | `[rdf]` with `[[species]]` |
 //! | `neighbours.rs` | the fraction of like neighbours of each species | `like_neighbours` |
