@@ -395,7 +395,7 @@ static ENTRIES: [Entry; 27] = [
         YAMADA,
         || Box::new(shardlow::m_shardlow_2()),
         None,
-        splitting(3, 3, 4, Some(2), false),
+        splitting(3, 3, 4, Some(4), false),
     ),
     entry(
         "prk3-ruth",

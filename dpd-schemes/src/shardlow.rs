@@ -11,8 +11,8 @@ use dpd_macros::dpd_scheme;
 /// Ob(1) B(1/2) A(1) B(1/2)
 /// ```
 ///
-/// The BBK update is only weakly second order: its error term is the first the invariant-measure
-/// analysis finds. Source: T. Shardlow, "Splitting for dissipative particle dynamics", SIAM J.
+/// The BBK update is weakly second order, yet keeps each pair's Maxwellian exactly, so the
+/// invariant-measure order is that of `O B A B`: 2. Source: T. Shardlow, "Splitting for dissipative particle dynamics", SIAM J.
 /// Sci. Comput. 24, 1267 (2003).
 pub fn dpd_s1() -> impl Scheme + Copy + Send + Sync + 'static {
     dpd_scheme!("ObBAB", name = "dpd-s1")
@@ -57,8 +57,8 @@ pub fn m_shardlow_1() -> impl Scheme + Copy + Send + Sync + 'static {
 /// x1 = 1/(2 - 2^(1/3)),  x0 = -2^(1/3)/(2 - 2^(1/3))
 /// ```
 ///
-/// The triple jump raises the order of the Hamiltonian part only: the BBK error term still
-/// bounds the invariant-measure order. Sources: Yamada et al. (algorithms.md
+/// The triple jump makes the Hamiltonian part fourth order, and since the BBK sweep keeps each
+/// pair's Maxwellian exactly the invariant-measure order is 4 as well. Sources: Yamada et al. (algorithms.md
 /// section 3); H. Yoshida, Phys. Lett. A 150, 262 (1990).
 pub fn m_shardlow_2() -> impl Scheme + Copy + Send + Sync + 'static {
     dpd_scheme!("S(x1) S(x0) S(x1) Ob", name = "m-shardlow-2")
