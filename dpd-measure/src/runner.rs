@@ -197,9 +197,17 @@ mod tests {
 
     #[test]
     fn processing_reads_the_positional_observables_off_an_untouched_trajectory() {
+        // Without and with a skin (the neighbour list kept between steps).
+        for skin in [0.0, 0.3] {
+            processing_keeps_the_trajectory(skin);
+        }
+    }
+
+    fn processing_keeps_the_trajectory(skin: f64) {
         let scheme = resolve("aboba").unwrap();
         let run_with = |c: Option<f64>| {
             let mut scene = tiny();
+            scene.geometry.skin = skin;
             if let Some(c) = c {
                 scene.observe.processing = c;
             }

@@ -20,7 +20,7 @@ pub use stress::{
     state_dissipative_stress, stop_recording, stress, ShearViscosity, Stress, ViscositySummary,
     VISCOSITY_BLOCKS,
 };
-pub use thermo::{kinetic_temperature, thermo, Thermo};
+pub use thermo::{kinetic_temperature, processed_thermo, thermo, Thermo};
 pub use vacf::Vacf;
 
 use crate::pairs::Pair;

@@ -1,4 +1,6 @@
+use crate::error::ParamError;
 use crate::system::System;
+use crate::Vec3;
 use serde::Serialize;
 
 /// Instantaneous thermodynamic quantities of one state.
@@ -81,4 +83,29 @@ pub fn thermo(sys: &mut System) -> Thermo {
         potential_energy: (u + bonded.energy) / n,
         pressure: n * tk / volume + (virial + bonded.virial) / (3.0 * volume),
     }
+}
+
+/// [`Thermo`] with its positional parts (T_C's sums, the potential energy, the virial) read
+/// at the processed positions `x + k F^C(x) / m` (Vilmart's postprocessing, `k = c dt^2`),
+/// on a copy; T_K is the system's own. `F^C(x)` is the evaluation [`thermo`] would make,
+/// with the same effect on the system's caches, so a run measuring this keeps the bits of
+/// one measuring [`thermo`], at one more force evaluation (at the processed positions).
+pub fn processed_thermo(sys: &mut System, k: f64) -> Result<Thermo, ParamError> {
+    let kinetic = kinetic_temperature(sys);
+    let processed = sys.with_forces(|s, _, forces| {
+        let q: Vec<Vec3> = s
+            .positions()
+            .iter()
+            .zip(forces)
+            .zip(s.masses())
+            .map(|((x, f), m)| x + f * (k / m))
+            .collect();
+        let mut copy = s.clone();
+        copy.set_positions(&q)?;
+        Ok::<_, ParamError>(thermo(&mut copy))
+    })?;
+    Ok(Thermo {
+        kinetic_temperature: kinetic,
+        ..processed
+    })
 }

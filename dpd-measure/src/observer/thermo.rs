@@ -1,11 +1,10 @@
 //! The thermodynamics every run averages over its window: T_K, T_C (a ratio of averages), the
 //! potential energy per particle and the virial pressure; with `processing = c` the positional
-//! ones read at `x + c dt^2 F(x) / m` (Vilmart's postprocessing), on a copy of the system.
+//! ones read at `x + c dt^2 F(x) / m` (Vilmart's postprocessing, `processed_thermo`).
 
 use super::interface::{Boxed, End, Observer, Setup};
 use crate::result::RunResult;
-use dpd_core::observe::Thermo as State;
-use dpd_core::observe::{thermo, ThermoAverages};
+use dpd_core::observe::{processed_thermo, thermo, ThermoAverages};
 use dpd_core::{ParamError, System};
 
 struct Thermo {
@@ -39,36 +38,12 @@ pub(super) fn new<'a>(
     })))
 }
 
-/// The thermodynamics at the processed positions `x + k F(x) / m`, measured on a copy, with
-/// T_K of the system itself. The unprocessed measurement is made first: it restarts the
-/// neighbour list's travel, which decides the later rebuilds and so the sweep order, and the
-/// trajectory must be the bits of an unprocessed run.
-fn processed(sys: &mut System, k: f64) -> Result<State, ParamError> {
-    let plain = thermo(sys);
-    let mut copy = sys.clone();
-    // Forces first: evaluating them may re-sort the copy's particles.
-    let force = copy.conservative_forces().to_vec();
-    let q: Vec<_> = copy
-        .positions()
-        .iter()
-        .zip(&force)
-        .zip(copy.masses())
-        .map(|((x, f), m)| x + f * (k / m))
-        .collect();
-    copy.set_positions(&q)?;
-    Ok(State {
-        // The copy's particles may be re-sorted: the same T_K, summed in another order.
-        kinetic_temperature: plain.kinetic_temperature,
-        ..thermo(&mut copy)
-    })
-}
-
 impl Observer for Thermo {
     fn sample(&mut self, sys: &mut System, _: u64) -> Result<(), ParamError> {
         let state = if self.processing == 0.0 {
             thermo(sys)
         } else {
-            processed(sys, self.processing)?
+            processed_thermo(sys, self.processing)?
         };
         self.averages.record(&state);
         Ok(())
