@@ -7,7 +7,8 @@
 //! scheme, the topology (bonds and angles by id, from version 8), the Lowe-Andersen collision
 //! rate (from version 9), whether bonded pairs are excluded from the pair forces (from version
 //! 10), PAdL's thermostat mass and adaptive friction factor xi (from version 11), the counts
-//! of the accept/reject tests of Metropolis-adjusted schemes (from version 12), and what a scheme carries between steps (the full forces of velocity Verlet, with
+//! of the accept/reject tests of Metropolis-adjusted schemes (from version 12), PNHL's
+//! thermostat friction (from version 13), and what a scheme carries between steps (the full forces of velocity Verlet, with
 //! their noise). Pair geometry and conservative forces are not stored: they are pure functions
 //! of the positions and the list, recomputed in the same pair order, hence bitwise equal. A restarted run
 //! therefore continues bit for bit like an uninterrupted one.
@@ -16,8 +17,9 @@
 //! CRC-32 of the payload (u32 LE), payload (bincode: the fields of `Payload`, then, from
 //! version 8, the optional topology, from version 9 the optional collision rate and from
 //! version 10 the exclusion flag, from version 11 the optional thermostat mass and xi, from
-//! version 12 the tests made and accepted (two u64); version 7 to 11 files, without them, still
-//! load, excluding nothing, with xi = 1 and no test counted). Writes go to a temporary file in the same
+//! version 12 the tests made and accepted (two u64), from version 13 the optional thermostat
+//! friction; version 7 to 12 files, without them, still load, excluding nothing, with xi = 1,
+//! no test counted and no thermostat friction). Writes go to a temporary file in the same
 //! directory, are synced, then renamed over the target, so an interrupted write never destroys
 //! the previous checkpoint.
 
@@ -33,10 +35,10 @@ use std::io::Write;
 use std::path::Path;
 
 const MAGIC: &[u8; 8] = b"DPDCHKPT";
-const VERSION: u32 = 12;
-/// The oldest version read: version 7 is version 12 without the topology, the collision rate,
-/// the exclusion flag, the thermostat mass and xi, and the acceptance counts; each later
-/// version adds the next of them (version 11 lacks only the acceptance counts).
+const VERSION: u32 = 13;
+/// The oldest version read: version 7 is version 13 without the topology, the collision rate,
+/// the exclusion flag, the thermostat mass and xi, the acceptance counts and the thermostat
+/// friction; each later version adds the next of them.
 const OLDEST: u32 = 7;
 const HEADER: usize = 8 + 4 + 8 + 4;
 
@@ -128,6 +130,7 @@ impl System {
         let acceptance = self.acceptance();
         bincode::serialize_into(&mut data, &(acceptance.proposed, acceptance.accepted))
             .map_err(encode)?;
+        bincode::serialize_into(&mut data, &self.params().thermostat_friction()).map_err(encode)?;
         let mut bytes = Vec::with_capacity(HEADER + data.len());
         bytes.extend_from_slice(MAGIC);
         bytes.extend_from_slice(&VERSION.to_le_bytes());
@@ -220,6 +223,11 @@ impl System {
         } else {
             (0, 0)
         };
+        let thermostat_friction: Option<f64> = if version >= 13 {
+            bincode::deserialize_from(&mut rest).map_err(decode)?
+        } else {
+            None
+        };
         let invalid = |source| CheckpointError::Invalid {
             path: name.clone(),
             source,
@@ -227,6 +235,7 @@ impl System {
         let params = ParamsBuilder {
             collision_rate,
             thermostat_mass,
+            thermostat_friction,
             ..payload.params.into()
         };
         let params = params.build().map_err(invalid)?;
@@ -306,12 +315,12 @@ mod tests {
         assert_eq!(back.ids(), sys.ids());
     }
 
-    /// Version 7 to 11 files (version 12 without the topology, the collision rate, the
-    /// exclusion flag, the thermostat mass, xi and the acceptance counts that follow the
-    /// payload, or without the first of them that their version lacks) load, excluding
-    /// nothing, with xi = 1 and no test counted.
+    /// Version 7 to 12 files (version 13 without the topology, the collision rate, the
+    /// exclusion flag, the thermostat mass, xi, the acceptance counts and the thermostat
+    /// friction that follow the payload, or without the first of them that their version
+    /// lacks) load, excluding nothing, with xi = 1, no test counted and no friction.
     #[test]
-    fn version_7_to_11_checkpoints_load() {
+    fn version_7_to_12_checkpoints_load() {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("c.chk");
         let sys = system(None);
@@ -319,13 +328,13 @@ mod tests {
         let bytes = std::fs::read(&path).unwrap();
         let mut tail = vec![0, 0, 0, 0];
         tail.extend_from_slice(&1f64.to_le_bytes());
-        tail.extend_from_slice(&[0; 16]);
+        tail.extend_from_slice(&[0; 17]);
         assert_eq!(
-            bytes[bytes.len() - 28..],
+            bytes[bytes.len() - 29..],
             tail,
-            "bincode's None twice, false, None, xi = 1, no test"
+            "bincode's None twice, false, None, xi = 1, no test, None"
         );
-        for (version, dropped) in [(7u32, 28), (8, 27), (9, 26), (10, 25), (11, 16)] {
+        for (version, dropped) in [(7u32, 29), (8, 28), (9, 27), (10, 26), (11, 17), (12, 1)] {
             let data = &bytes[HEADER..bytes.len() - dropped];
             let mut old = MAGIC.to_vec();
             old.extend_from_slice(&version.to_le_bytes());
@@ -345,18 +354,22 @@ mod tests {
         }
     }
 
-    /// PAdL's thermostat mass and adaptive friction factor are kept.
+    /// The thermostat mass, PNHL's thermostat friction and the adaptive friction factor are
+    /// kept.
     #[test]
     fn the_adaptive_thermostat_is_kept() {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("c.chk");
-        let params = Params::builder().thermostat_mass(10.0).build().unwrap();
+        let params = Params::builder()
+            .thermostat_mass(10.0)
+            .thermostat_friction(2.0);
+        let params = params.build().unwrap();
         let mut sys = equilibrium_box(params, 200, 3.0, 3)
             .unwrap()
             .build()
             .unwrap();
         sys.set_xi(0.8125).unwrap();
-        sys.save_checkpoint(&path, "B A Xi(1/2) Oa Xi(1/2) A B")
+        sys.save_checkpoint(&path, "B A Xi(1/2) On Xi(1/2) A B")
             .unwrap();
         let (back, _) = System::load_checkpoint(&path).unwrap();
         assert_eq!((back.params(), back.xi()), (sys.params(), 0.8125));

@@ -77,7 +77,9 @@ impl System {
     /// (`B[bond]`) must be one the system has ([`System::force_groups`]), and each group the
     /// system has must be applied by some stage (a scheme of `B[pair]` and `T` alone leaves the
     /// bonded forces out); a program with L needs a collision rate ([`crate::Params::collision_rate`]),
-    /// one with Xi a thermostat mass ([`crate::Params::thermostat_mass`]); a Metropolis-adjusted
+    /// one with Xi a thermostat mass ([`crate::Params::thermostat_mass`]), one with On a
+    /// thermostat friction ([`crate::Params::thermostat_friction`], which one with Oa must not
+    /// have); a Metropolis-adjusted
     /// program (`{...}`) an equilibrium scene (no shear, walls or body force).
     /// Hand-written schemes, without a program, are not checked.
     pub fn check_scheme<S: Scheme + ?Sized>(&self, scheme: &S) -> Result<(), ParamError> {
@@ -112,13 +114,31 @@ impl System {
                 Flow::Xi,
                 self.params().thermostat_mass().is_some(),
                 "thermostat_mass",
-                "Xi (the adaptive friction of PAdL), which needs the thermostat mass mu: set thermostat_mass to a finite value > 0 (energy units; xi fluctuates around 1 with variance kbt / mu)",
+                "Xi (the adaptive friction of PAdL and PNHL), which needs the thermostat mass mu: set thermostat_mass to a finite value > 0 (energy units; xi fluctuates around 1, PNHL around 0, with variance kbt / mu)",
+            ),
+            (
+                Flow::On,
+                self.params().thermostat_friction().is_some(),
+                "thermostat_friction",
+                "On (PNHL's pair sweep without noise), which needs the Langevin friction gamma_xi of xi, the only noise of the scheme: set thermostat_friction to a finite value > 0 (per unit time)",
             ),
         ];
         for (flow, set, field, why) in needs {
             if !set && program.stages.iter().any(|s| s.flow == flow) {
                 let message = format!("scheme {} has {why}", scheme.name());
                 return Err(ParamError::new(field, "unset", message));
+            }
+        }
+        if let Some(gamma_xi) = self.params().thermostat_friction() {
+            if program.stages.iter().any(|s| s.flow == Flow::Oa) {
+                return Err(ParamError::new(
+                    "thermostat_friction",
+                    gamma_xi,
+                    format!(
+                        "scheme {} has Oa (PAdL), whose xi centres on 1: the Langevin dynamics of xi around 0 is PNHL's, for schemes with On (unset thermostat_friction)",
+                        scheme.name()
+                    ),
+                ));
             }
         }
         // The accept/reject tests the energy of a Hamiltonian: not defined with a sliding
@@ -191,8 +211,9 @@ pub fn apply_stage(sys: &mut System, stage: &Stage) {
         (Flow::F, None) => full_force(sys, h, stage.stream),
         (Flow::F, Some(group)) => full_force_group(sys, h, stage.stream, group),
         (Flow::L, _) => collide(sys, h, stage.stream, stage.order),
-        (Flow::Oa, _) => adaptive_ou(sys, h, stage.stream, stage.order),
-        (Flow::Xi, _) => xi_update(sys, h),
+        (Flow::Oa, _) => adaptive_ou(sys, h, stage.stream, stage.order, true),
+        (Flow::On, _) => adaptive_ou(sys, h, stage.stream, stage.order, false),
+        (Flow::Xi, _) => xi_update(sys, h, stage.stream),
         (Flow::Propose, _) => propose(sys),
         (Flow::Accept, _) => accept(sys, stage.stream),
     }

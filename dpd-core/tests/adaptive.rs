@@ -1,6 +1,8 @@
 //! The pairwise adaptive Langevin thermostat (letters Oa and Xi, PAdL): its invariant measure
 //! (xi Gaussian around 1 with variance k_B T / mu, k_B T_K = k_B T), its claim (the kinetic
-//! temperature held at a step where ABOBA's drifts), and what it needs.
+//! temperature held at a step where ABOBA's drifts), and what it needs; the same for the
+//! pairwise Nose-Hoover-Langevin thermostat (On and Xi with a thermostat friction, PNHL: xi
+//! around 0).
 mod common;
 
 use dpd_core::observe::{block_mean, kinetic_temperature};
@@ -14,11 +16,22 @@ fn compiled(source: &str) -> DynScheme {
     DynScheme::compile(source, source, &Default::default()).unwrap()
 }
 
+/// PNHL in the same ordering, the pair sweep without noise.
+const PNHL: &str = "B A Xi(1/2) On Xi(1/2) A B";
+
 /// `n` particles at density 3 (a = 25, k_B T = 1) at friction `gamma` with thermostat mass
 /// `mu`.
 fn adaptive_box(n: usize, gamma: f64, mu: f64, dt: f64, seed: u64) -> System {
     let params = Params::builder().gamma(gamma).thermostat_mass(mu);
     common::system(n, 3.0, params, dt, seed)
+}
+
+/// On `sys` run by `scheme` for 200 time units at dt = 0.01 after 20: xi's mean, its variance
+/// around `centre` and k_B T_K, each with its standard error (20 blocks).
+fn moments(mut sys: System, scheme: &str, centre: f64) -> [(f64, f64); 3] {
+    let (xi, tk) = series(&mut sys, &compiled(scheme), 2000, 20_000);
+    let squares: Vec<f64> = xi.iter().map(|x| (x - centre) * (x - centre)).collect();
+    [&xi, &squares, &tk].map(|v| block_mean(v, 20).unwrap())
 }
 
 /// After `skip` steps, per step of the next `steps`: xi and k_B T_K.
@@ -43,12 +56,8 @@ fn series(sys: &mut System, scheme: &dyn Scheme, skip: u64, steps: u64) -> (Vec<
 /// wrong sign sends xi away.
 #[test]
 fn xi_and_the_kinetic_temperature_sample_their_invariant_measure() {
-    let mut sys = adaptive_box(250, 4.5, 25.0, 0.01, 3);
-    let (xi, tk) = series(&mut sys, &compiled(PADL), 2000, 20_000);
-    let (mean, mean_err) = block_mean(&xi, 20).unwrap();
-    let squares: Vec<f64> = xi.iter().map(|x| (x - 1.0) * (x - 1.0)).collect();
-    let (var, var_err) = block_mean(&squares, 20).unwrap();
-    let (t, t_err) = block_mean(&tk, 20).unwrap();
+    let sys = adaptive_box(250, 4.5, 25.0, 0.01, 3);
+    let [(mean, mean_err), (var, var_err), (t, t_err)] = moments(sys, PADL, 1.0);
     assert!((mean - 1.0).abs() < 0.02, "xi {mean} +- {mean_err}");
     assert!((var / 0.04 - 1.0).abs() < 0.12, "var {var} +- {var_err}");
     assert!((t - 1.0).abs() < 0.005, "kT_K {t} +- {t_err}");
@@ -88,4 +97,57 @@ fn a_scheme_with_xi_needs_a_thermostat_mass() {
     }
     let e = DynScheme::compile("BAOaAB", "BAOaAB", &Default::default()).unwrap_err();
     assert!(format!("{e:?}").contains("Oa needs an Xi stage"), "{e:?}");
+}
+
+/// PNHL's invariant density `exp(-H / kT) exp(-mu xi^2 / (2 kT))` (flow/adaptive.rs): xi has
+/// mean 0 and variance kT / mu = 0.04, and k_B T_K = k_B T, though no pair draws noise: the
+/// Langevin part of xi (gamma_xi = 1) is the only noise. Same box, step and length as PAdL's
+/// test above, xi starting at 1. Measured: xi -0.0004 +- 0.0009, variance 0.0405 +- 0.0019,
+/// k_B T_K 0.9997 +- 0.0016; the bounds are about 3 standard errors. A feedback of the wrong sign sends xi away, a missing factor
+/// 2 in the noise of xi doubles the variance, an OU centred on 1 (PAdL's) moves the mean by 1.
+#[test]
+fn pnhl_samples_its_invariant_measure_with_the_noise_on_xi_alone() {
+    let params = Params::builder()
+        .thermostat_mass(25.0)
+        .thermostat_friction(1.0);
+    let sys = common::system(250, 3.0, params, 0.01, 3);
+    let [(mean, mean_err), (var, var_err), (t, t_err)] = moments(sys, PNHL, 0.0);
+    assert!(mean.abs() < 0.02, "xi {mean} +- {mean_err}");
+    assert!((var / 0.04 - 1.0).abs() < 0.15, "var {var} +- {var_err}");
+    assert!((t - 1.0).abs() < 0.005, "kT_K {t} +- {t_err}");
+}
+
+/// PNHL's pair sweep conserves momentum to rounding (500 steps, xi of either sign).
+#[test]
+fn pnhl_conserves_momentum() {
+    let params = Params::builder()
+        .thermostat_mass(25.0)
+        .thermostat_friction(1.0);
+    let mut sys = common::system(250, 3.0, params, 0.01, 7);
+    let p0 = sys.total_momentum();
+    sys.advance(&compiled(PNHL), 500).unwrap();
+    let scale: f64 = sys.momenta().iter().map(|p| p.norm()).sum();
+    let drift = (sys.total_momentum() - p0).norm() / scale;
+    assert!(drift < 1e-13, "relative momentum change {drift:e}");
+}
+
+/// On needs the thermostat friction (its only noise), Oa refuses it (PAdL's xi centres on 1),
+/// and each says so by name.
+#[test]
+fn pnhl_and_padl_name_the_thermostat_friction() {
+    let params = Params::builder().thermostat_mass(25.0);
+    let mut sys = common::system(250, 3.0, params.clone(), 0.01, 1);
+    let mut with = common::system(250, 3.0, params.thermostat_friction(1.0), 0.01, 1);
+    for (sys, scheme, says) in [
+        (&mut sys, PNHL, "has On"),
+        (&mut with, PADL, "has Oa (PAdL), whose xi centres on 1"),
+    ] {
+        match sys.advance(&compiled(scheme), 1) {
+            Err(AdvanceError::Scheme(e)) => {
+                assert_eq!(e.field, "thermostat_friction", "{e}");
+                assert!(e.to_string().contains(says), "{e}");
+            }
+            other => panic!("{scheme}: {other:?}"),
+        }
+    }
 }

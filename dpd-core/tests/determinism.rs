@@ -69,6 +69,13 @@ fn trajectory_is_identical_for_any_thread_count() {
     };
     let padl = compiled("B A Xi(1/2) Oa Xi(1/2) A B");
     same_on_any_thread_count(&padl, &[1, 2, 3, 5], adaptive, 40);
+    // PNHL: the same sum, and xi's own normal keyed by the step and the Xi stage.
+    let pnhl_box = || {
+        let params = Params::builder().thermostat_mass(200.0);
+        common::system(3000, 3.0, params.thermostat_friction(1.0), 0.04, 17)
+    };
+    let pnhl = compiled("B A Xi(1/2) On Xi(1/2) A B");
+    same_on_any_thread_count(&pnhl, &[1, 2, 3, 5], pnhl_box, 40);
 }
 
 /// Above 16 384 particles the per-particle loops (binning, permutation, drifts, kicks, the

@@ -86,6 +86,7 @@ pub fn applies(flow: Flow, group: Option<ForceGroup>, g: ForceGroup) -> bool {
         | Flow::Bbk
         | Flow::L
         | Flow::Oa
+        | Flow::On
         | Flow::Xi
         | Flow::Propose
         | Flow::Accept => false,

@@ -36,9 +36,16 @@ pub enum Flow {
     /// `xi gamma_ij` scaled by the system's adaptive friction factor `xi`, its noise
     /// `sigma_ij` fixed; exact in distribution per pair at fixed `xi`. Needs `h > 0`.
     Oa,
-    /// Update of the adaptive friction factor of PAdL, `xi += h G / mu` with
+    /// Pairwise Nose-Hoover sweep (PNHL): [`Flow::Oa`] without the pair noise, each pair's
+    /// relative normal velocity damped by `exp(-xi gamma_ij w_D mu_ij h)` (any sign of `xi`).
+    /// Needs `h > 0`.
+    On,
+    /// Update of the adaptive friction factor of PAdL and PNHL, `xi += h G / mu` with
     /// `G = sum over pairs gamma_ij w_D (u_ij^2 - kbt (1/m_i + 1/m_j))`, exact at fixed
-    /// positions and momenta (which it does not change).
+    /// positions and momenta (which it does not change); with a thermostat friction (PNHL)
+    /// the exact Ornstein-Uhlenbeck flow of xi around 0 under that drift. Its
+    /// [`Stage::stream`] numbers the Xi stages of the step (0, 1, ...), whose noise is drawn
+    /// from a stream apart from the sweeps'.
     Xi,
     /// `{`, the start of a Metropolis-adjusted part: keeps the state and its energy
     /// `H = K + U` for the accept/reject at the matching [`Flow::Accept`]. No step length.
@@ -52,7 +59,7 @@ pub enum Flow {
 
 impl Flow {
     /// Every flow, in the order of the enum.
-    pub const ALL: [Flow; 11] = [
+    pub const ALL: [Flow; 12] = [
         Flow::A,
         Flow::B,
         Flow::O,
@@ -61,6 +68,7 @@ impl Flow {
         Flow::F,
         Flow::L,
         Flow::Oa,
+        Flow::On,
         Flow::Xi,
         Flow::Propose,
         Flow::Accept,
@@ -70,13 +78,16 @@ impl Flow {
     pub fn is_stochastic(self) -> bool {
         matches!(
             self,
-            Flow::O | Flow::Bbk | Flow::T | Flow::F | Flow::L | Flow::Oa
+            Flow::O | Flow::Bbk | Flow::T | Flow::F | Flow::L | Flow::Oa | Flow::On
         )
     }
 
     /// True for the flows that visit pairs successively, so that their order matters.
     pub fn is_successive_sweep(self) -> bool {
-        matches!(self, Flow::O | Flow::Bbk | Flow::T | Flow::L | Flow::Oa)
+        matches!(
+            self,
+            Flow::O | Flow::Bbk | Flow::T | Flow::L | Flow::Oa | Flow::On
+        )
     }
 
     /// True for the flows that change positions.

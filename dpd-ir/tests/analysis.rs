@@ -177,20 +177,18 @@ fn collisions_have_the_analysis_of_the_exact_sweep() {
     assert_eq!(invariant(&abo), 1, "{abo}");
 }
 
-/// The adaptive thermostat's friction factor xi is a variable of its own, outside the A, B
-/// and O generators: the invariant-measure criterion does not apply (measure it), while
-/// consistency and the Hamiltonian part are analysed as for O.
+/// The adaptive thermostats' friction factor xi (PAdL's Oa, PNHL's On) is a variable of its
+/// own, outside the A, B and O generators: the invariant-measure criterion does not apply
+/// (measure it), while consistency and the Hamiltonian part are analysed as for O.
 #[test]
-fn the_adaptive_thermostat_is_outside_the_criterion() {
-    let a = analyse(
-        &dpd_ir::lang::compile("B A Xi(1/2) Oa Xi(1/2) A B")
-            .unwrap()
-            .unmerged_stages,
-    );
-    assert!(a.consistent, "{a}");
-    assert_eq!(a.deterministic_order, 2);
-    assert_eq!(a.invariant_measure_order, None);
-    assert!(a.to_string().contains("Oa and Xi"), "{a}");
+fn the_adaptive_thermostats_are_outside_the_criterion() {
+    for scheme in ["B A Xi(1/2) Oa Xi(1/2) A B", "B A Xi(1/2) On Xi(1/2) A B"] {
+        let a = analyse(&dpd_ir::lang::compile(scheme).unwrap().unmerged_stages);
+        assert!(a.consistent, "{a}");
+        assert_eq!(a.deterministic_order, 2);
+        assert_eq!(a.invariant_measure_order, None);
+        assert!(a.to_string().contains("Oa, On and Xi"), "{a}");
+    }
 }
 
 /// Shardlow's BBK update keeps each pair's Maxwellian exactly (it is O's exact flow over a

@@ -304,7 +304,7 @@ fn errors_point_at_their_source() {
     assert!(err(" \n ")[0].message.contains("empty scheme"));
     assert_eq!(
         err("ABQ")[0].message,
-        "unknown sub-flow 'Q' at position 3; expected one of A, B, O, Ob, T, F, L, Oa, Xi, S or a defined name"
+        "unknown sub-flow 'Q' at position 3; expected one of A, B, O, Ob, T, F, L, Oa, On, Xi, S or a defined name"
     );
     assert_eq!(one_err("ABQ", "unknown sub-flow"), "Q");
     assert_eq!(one_err("AB x", "unknown sub-flow 'x'"), "x");
@@ -361,7 +361,18 @@ fn errors_point_at_their_source() {
         ]
     );
     assert_eq!(one_err("BAOaAB", "Oa needs an Xi stage"), "Oa");
-    assert_eq!(one_err("BAOAB Xi", "Xi needs an Oa stage"), "Xi");
+    assert_eq!(one_err("BAOAB Xi", "Xi needs an Oa or On stage"), "Xi");
+    // The pairwise Nose-Hoover-Langevin thermostat: On with Xi, alone.
+    let pnhl = ok("B A Xi(1/2) On Xi(1/2) A B");
+    assert_eq!(pnhl.stages[3].flow, Flow::On);
+    assert_eq!(one_err("BA On AB", "On needs an Xi stage"), "On");
+    assert_eq!(
+        one_err(
+            "B A Xi(1/2) On(1/2) Oa(1/2) Xi(1/2) A B",
+            "pairwise thermostat of Oa"
+        ),
+        "On(1/2)"
+    );
     assert_eq!(
         one_err(
             "B A Xi(1/2) Oa(1/2) O(1/2) Xi(1/2) A B",

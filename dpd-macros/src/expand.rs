@@ -132,8 +132,9 @@ fn stage(stage: &Stage, rt: &TokenStream) -> TokenStream {
         (Flow::F, None) => quote!(#rt::full_force(sys, #h, #stream);),
         (Flow::F, Some(g)) => quote!(#rt::full_force_group(sys, #h, #stream, #g);),
         (Flow::L, _) => quote!(#rt::collide(sys, #h, #stream, #order);),
-        (Flow::Oa, _) => quote!(#rt::adaptive_ou(sys, #h, #stream, #order);),
-        (Flow::Xi, _) => quote!(#rt::xi_update(sys, #h);),
+        (Flow::Oa, _) => quote!(#rt::adaptive_ou(sys, #h, #stream, #order, true);),
+        (Flow::On, _) => quote!(#rt::adaptive_ou(sys, #h, #stream, #order, false);),
+        (Flow::Xi, _) => quote!(#rt::xi_update(sys, #h, #stream);),
         (Flow::Propose, _) => quote!(#rt::propose(sys);),
         (Flow::Accept, _) => quote!(#rt::accept(sys, #stream);),
     }

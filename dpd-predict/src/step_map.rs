@@ -62,12 +62,12 @@ pub enum StepMapError {
          with Gaussian noise"
     )]
     Collisions(String),
-    /// Oa and Xi: the friction factor xi is a state variable that multiplies the momenta in
-    /// Oa and is driven by their squares in Xi, so the step is not linear.
+    /// Oa or On and Xi: the friction factor xi is a state variable that multiplies the momenta
+    /// in Oa and On and is driven by their squares in Xi, so the step is not linear.
     #[error(
-        "{0} has Oa and Xi (the adaptive thermostat, PAdL), which the predictor does not cover: \
-         the friction factor xi multiplies the momenta and is driven by their squares, so the \
-         step is not a linear map with Gaussian noise"
+        "{0} has Oa or On and Xi (the adaptive thermostats, PAdL and PNHL), which the predictor \
+         does not cover: the friction factor xi multiplies the momenta and is driven by their \
+         squares, so the step is not a linear map with Gaussian noise"
     )]
     Adaptive(String),
     /// Braces: the accept/reject chooses between two states on the energy difference of the
@@ -189,7 +189,9 @@ impl StepMap {
                     )
                 }
                 Flow::L => return Err(StepMapError::Collisions(program.source.clone())),
-                Flow::Oa | Flow::Xi => return Err(StepMapError::Adaptive(program.source.clone())),
+                Flow::Oa | Flow::On | Flow::Xi => {
+                    return Err(StepMapError::Adaptive(program.source.clone()))
+                }
                 Flow::Propose | Flow::Accept => {
                     return Err(StepMapError::Adjusted(program.source.clone()))
                 }

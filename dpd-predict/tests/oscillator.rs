@@ -55,8 +55,13 @@ fn the_adaptive_thermostat_is_refused_by_name() {
         omega2: 100.0,
         gamma: 4.5,
     };
-    let e = StepMap::new(&program("B A Xi(1/2) Oa Xi(1/2) A B"), mode, 0.05, 1.0).unwrap_err();
-    assert!(e.to_string().contains("Oa and Xi (the adaptive"), "{e}");
+    for scheme in ["B A Xi(1/2) Oa Xi(1/2) A B", "B A Xi(1/2) On Xi(1/2) A B"] {
+        let e = StepMap::new(&program(scheme), mode, 0.05, 1.0).unwrap_err();
+        assert!(
+            e.to_string().contains("Oa or On and Xi (the adaptive"),
+            "{e}"
+        );
+    }
 }
 
 /// A Metropolis-adjusted step is not linear: the predictor refuses it by name.

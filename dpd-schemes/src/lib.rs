@@ -21,7 +21,7 @@
 //! | [`composition`] | Yoshida's triple jump composed symmetrically with exact O |
 //! | [`exponential`] | SETD, MSETD for small masses |
 //! | [`lowe`] | Lowe-Andersen collisions: Lowe's velocity Verlet + L, the ABOBA ordering ABLBA |
-//! | [`adaptive`] | the pairwise adaptive Langevin thermostat (PAdL) in the BAOAB and ABOBA orderings |
+//! | [`adaptive`] | the pairwise adaptive Langevin thermostat (PAdL) in the BAOAB and ABOBA orderings, the pairwise Nose-Hoover-Langevin thermostat (PNHL) in the BAOAB one |
 //! | [`peters`] | Peters' scheme: velocity Verlet, then Peters' pair thermostat (= the O sweep) |
 //! | [`adjusted`] | Metropolis-adjusted (generalised hybrid Monte Carlo): velocity Verlet in braces, then O |
 //!

@@ -228,7 +228,7 @@ const PRK_DPD: &str = "Fluids 4, 156 (2019), doi:10.3390/fluids4030156";
 const ETD: &str =
     "N. Phan-Thien, N. Mai-Duy, D. Pan and B. C. Khoo, Comput. Phys. Commun. 185, 229 (2014)";
 
-static ENTRIES: [Entry; 27] = [
+static ENTRIES: [Entry; 28] = [
     entry(
         "vv",
         &["velocity-verlet", "groot-warren", "gw"],
@@ -345,6 +345,15 @@ static ENTRIES: [Entry; 27] = [
         || Box::new(adaptive::padl_aboba()),
         None,
         splitting(1, 1, 2, None, true),
+    ),
+    entry(
+        "pnhl",
+        &[],
+        "pairwise Nose-Hoover-Langevin: PAdL's ordering with the noiseless sweep On, the noise on xi alone (needs thermostat_mass and thermostat_friction)",
+        "B. Leimkuhler and X. Shang, J. Comput. Phys. 280, 72 (2015); ordering: padl's (this crate)",
+        || Box::new(adaptive::pnhl()),
+        None,
+        splitting(1, 2, 2, None, true),
     ),
     entry(
         "ghmc",

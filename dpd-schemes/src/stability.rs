@@ -8,8 +8,8 @@
 //! friction, so every run starts in equilibrium, with Maxwell momenta for its mass, and the
 //! temperature errors measure what the scheme does to an equilibrium state. Temperatures are
 //! averaged over the second half of the run, at the end of full steps. Schemes with
-//! Lowe-Andersen collisions collide at the fixed [`COLLISION_RATE`], adaptive schemes (PAdL)
-//! have the fixed [`THERMOSTAT_MASS`].
+//! Lowe-Andersen collisions collide at the fixed [`COLLISION_RATE`], adaptive schemes (PAdL,
+//! PNHL) have the fixed [`THERMOSTAT_MASS`], PNHL's the [`THERMOSTAT_FRICTION`].
 //!
 //! The blow-up guard of `System::advance` also trips when a particle may have moved more than
 //! half the box edge between two checks of the neighbour list; in a small box with light
@@ -19,8 +19,10 @@
 use dpd_core::error::{AdvanceError, ParamError};
 use dpd_core::init::{cubic_box, maxwell_momenta, uniform_positions};
 use dpd_core::observe::{thermo, ThermoAverages};
+use dpd_core::params::ParamsBuilder;
 use dpd_core::reference::Aboba;
 use dpd_core::{Params, PeriodicBox, Scheme, System, Vec3};
+use dpd_ir::Flow;
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -34,6 +36,20 @@ pub const COLLISION_RATE: f64 = 0.54;
 /// The thermostat mass of schemes with Oa and Xi (PAdL), whatever the matrix's friction:
 /// 10 gamma^2 at gamma = 4.5, xi = 1 +- 0.07 (docs/design-search.md).
 pub const THERMOSTAT_MASS: f64 = 202.5;
+
+/// The Langevin friction of xi in schemes with On (PNHL), per unit time: xi's
+/// Ornstein-Uhlenbeck part relaxes over one time unit.
+pub const THERMOSTAT_FRICTION: f64 = 1.0;
+
+/// `params` with the [`THERMOSTAT_FRICTION`] when `scheme` has an On stage (PNHL), without it
+/// otherwise (a scheme with Oa refuses it: PAdL's xi centres on 1).
+pub fn with_thermostat_friction(params: ParamsBuilder, scheme: &dyn Scheme) -> ParamsBuilder {
+    let pnhl = (scheme.program()).is_some_and(|p| p.stages.iter().any(|s| s.flow == Flow::On));
+    match pnhl {
+        true => params.thermostat_friction(THERMOSTAT_FRICTION),
+        false => params,
+    }
+}
 
 /// A completed run is sane when both mean temperatures are within this factor of k_B T: a
 /// run at twice or half the target temperature is not a usable simulation, even if nothing
@@ -233,8 +249,8 @@ fn run_one(
 ) -> Result<Outcome, ParamError> {
     let params = (Params::builder().gamma(gamma))
         .collision_rate(COLLISION_RATE)
-        .thermostat_mass(THERMOSTAT_MASS)
-        .build()?;
+        .thermostat_mass(THERMOSTAT_MASS);
+    let params = with_thermostat_friction(params, scheme).build()?;
     let kbt = params.kbt();
     let masses = vec![mass; start.len()];
     let mut sys = System::builder(params, bx, start.to_vec())

@@ -82,7 +82,7 @@ fn known_orders_are_reproduced() {
 fn counters_match_the_claimed_costs() {
     for e in entries() {
         let scheme = e.scheme();
-        let mut sys = common::standard_box(0.01, 4);
+        let mut sys = common::standard_box(&*scheme, 0.01, 4);
         // The first step fills the caches that later steps reuse (velocity Verlet's forces).
         sys.advance(&*scheme, 1).unwrap();
         let before = sys.counters();
@@ -105,7 +105,7 @@ fn counters_match_the_claimed_costs() {
 }
 
 fn run(scheme: &dyn Scheme, steps: u64) -> System {
-    let mut sys = common::standard_box(0.04, 6);
+    let mut sys = common::standard_box(scheme, 0.04, 6);
     sys.advance(scheme, steps).unwrap();
     sys
 }

@@ -127,7 +127,10 @@ fn the_thermostat_alone_keeps_the_maxwellian_at_any_step() {
 fn peters_is_b_a_b_o_bitwise() {
     let peters = lookup("peters").unwrap().scheme();
     let compiled = DynScheme::compile("B A B O", "B A B O", &Default::default()).unwrap();
-    let (mut a, mut b) = (common::standard_box(0.04, 3), common::standard_box(0.04, 3));
+    let (mut a, mut b) = (
+        common::standard_box(&*peters, 0.04, 3),
+        common::standard_box(&*peters, 0.04, 3),
+    );
     a.advance(&*peters, 200).unwrap();
     b.advance(&compiled, 200).unwrap();
     assert!(common::same_state(&a, &b));

@@ -35,8 +35,9 @@ fn every_scheme_samples_the_target_temperature_within_3_5_percent() {
         .map(|e| {
             let dt = dt_for(e.name);
             let steps = if dt < 0.005 { 25_000 } else { 8_000 };
-            let mut sys = common::standard_box(dt, 3);
-            let s = common::averages(&mut sys, &*e.scheme(), steps, 20, 0.9);
+            let scheme = e.scheme();
+            let mut sys = common::standard_box(&*scheme, dt, 3);
+            let s = common::averages(&mut sys, &*scheme, steps, 20, 0.9);
             (e.name, dt, s)
         })
         .collect();

@@ -15,7 +15,7 @@ fn errors(dt: f64, seeds: u64) -> [(f64, f64); 2] {
     let runs: Vec<[f64; 2]> = (0..seeds)
         .into_par_iter()
         .map(|seed| {
-            let mut sys = common::standard_box(dt, 100 + seed);
+            let mut sys = common::standard_box(&*scheme, dt, 100 + seed);
             let s = common::averages(&mut sys, &*scheme, steps, every, 0.95)
                 .unwrap_or_else(|e| panic!("ABOBA blew up at dt = {dt}: {e}"));
             [

@@ -59,6 +59,10 @@ pub struct SceneFlags {
     #[arg(long, value_name = "MU", allow_negative_numbers = true)]
     #[serde(skip_serializing_if = "Option::is_none")]
     pub thermostat_mass: Option<f64>,
+    /// Langevin friction gamma_xi of xi, per unit time (PNHL: schemes with On and Xi)
+    #[arg(long, value_name = "GAMMA_XI", allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub thermostat_friction: Option<f64>,
     /// Seed of the first run
     #[arg(long, allow_negative_numbers = true)]
     #[serde(skip_serializing_if = "Option::is_none")]

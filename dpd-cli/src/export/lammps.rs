@@ -82,7 +82,7 @@ pub struct Exported {
 }
 
 /// The program of a registry name or scheme string (its kicks joined by [`joined_kicks`]), or
-/// why it cannot be exported: unknown (the registry's message), hand-written, with an L, Oa or
+/// why it cannot be exported: unknown (the registry's message), hand-written, with an L, Oa, On or
 /// Xi stage, Metropolis-adjusted (braces), or inconsistent without `allow_inconsistent`. Every other letter and force group runs in the
 /// plugin (T only with `pair_style dpd/soft`, `B[bond]` only with bonded styles, which the fix
 /// checks).
@@ -126,11 +126,11 @@ pub fn resolve(name: &str, allow_inconsistent: bool) -> Result<Exported, String>
     if program
         .stages
         .iter()
-        .any(|s| matches!(s.flow, Flow::Oa | Flow::Xi))
+        .any(|s| matches!(s.flow, Flow::Oa | Flow::On | Flow::Xi))
     {
         return Err(format!(
-            "scheme '{name}' = {program} has Oa and Xi (the adaptive thermostat, PAdL), which \
-             the LAMMPS plugin does not run: its kernels have no adaptive friction xi (export a \
+            "scheme '{name}' = {program} has Oa or On and Xi (the adaptive thermostats, PAdL and \
+             PNHL), which the LAMMPS plugin does not run: its kernels have no adaptive friction xi (export a \
              scheme of A, B, O, Ob, T and F)"
         ));
     }
@@ -230,7 +230,7 @@ fn c_string(text: &str) -> String {
     out
 }
 
-/// The C++ enumerator of a flow (schemes.h, which has none for L, Oa, Xi and the braces:
+/// The C++ enumerator of a flow (schemes.h, which has none for L, Oa, On, Xi and the braces:
 /// [`resolve`] refuses them).
 fn flow_name(flow: Flow) -> &'static str {
     match flow {
@@ -242,6 +242,7 @@ fn flow_name(flow: Flow) -> &'static str {
         Flow::F => "FLOW_F",
         Flow::L => "FLOW_L",
         Flow::Oa => "FLOW_OA",
+        Flow::On => "FLOW_ON",
         Flow::Xi => "FLOW_XI",
         Flow::Propose => "FLOW_PROPOSE",
         Flow::Accept => "FLOW_ACCEPT",
@@ -355,11 +356,13 @@ mod tests {
     fn refusals_say_why() {
         let lowe = resolve("B A B L", false).unwrap_err();
         assert!(lowe.contains("L (Lowe-Andersen collisions)"), "{lowe}");
-        let padl = resolve("B A Xi(1/2) Oa Xi(1/2) A B", false).unwrap_err();
-        assert!(
-            padl.contains("Oa and Xi (the adaptive thermostat"),
-            "{padl}"
-        );
+        for adaptive in ["B A Xi(1/2) Oa Xi(1/2) A B", "B A Xi(1/2) On Xi(1/2) A B"] {
+            let e = resolve(adaptive, false).unwrap_err();
+            assert!(
+                e.contains("Oa or On and Xi (the adaptive thermostats"),
+                "{e}"
+            );
+        }
         let ghmc = resolve("{B(1/2) A B(1/2)} O", false).unwrap_err();
         assert!(
             ghmc.contains("Metropolis-adjusted") && ghmc.contains("energy difference"),

@@ -12,11 +12,22 @@
 //! (`mu_ij = 1/m_i + 1/m_j`) and the flow of `xi` at exactly the opposite rate. So `xi` is
 //! Gaussian around 1 with variance `kbt / mu`, and a discretisation that heats or cools the
 //! pairs' relative motion drives `xi` up or down until the kinetic temperature is restored.
+//!
+//! The pairwise Nose-Hoover-Langevin thermostat (PNHL; Leimkuhler and Shang, J. Comput. Phys.
+//! 280, 72 (2015)) drops the pair noise: On is Oa with `sigma_ij = 0`, and Xi, given a
+//! thermostat friction `gamma_xi` ([`crate::Params::thermostat_friction`]), adds Langevin
+//! dynamics to `xi`, `d xi = (G / mu - gamma_xi xi) dt + sqrt(2 gamma_xi kbt / mu) dW`. Then
+//! `exp(-H/kbt) exp(-mu xi^2 / (2 kbt))` is invariant: the whole friction `xi gamma_ij` changes
+//! the density at the rate `xi rho sum gamma_ij w_D (mu_ij - u^2/kbt)`, the drift `G / mu`
+//! at the opposite rate, and the Ornstein-Uhlenbeck part keeps the Gaussian of `xi` around 0 of
+//! variance `kbt / mu`; its noise makes the dynamics ergodic.
 
+use super::adjusted::APART_STREAM;
 use super::expm1::expm1;
-use super::pair_sweep::{pair_by_pair, per_mass, sweep, Change};
+use super::pair_sweep::{pair_by_pair, per_mass, sweep, sweep_noiseless, Change};
 use crate::force::{ByType, Friction, Uniform};
 use crate::pairs::{Ends, Pair, Particles, Two, Virial};
+use crate::rng::pair_normal;
 use crate::system::System;
 use crate::Vec3;
 use dpd_ir::SweepOrder;
@@ -25,17 +36,18 @@ use dpd_ir::SweepOrder;
 /// `u_new = u exp(-x) + sigma_ij w_R mu_ij sqrt(h phi(2x)) R` with
 /// `x = xi gamma_ij w_D mu_ij h` and `phi(y) = (1 - exp(-y)) / y` (`phi(0) = 1`), visiting the
 /// pairs in `order` as O does. At `xi = 1` it is O (to rounding); at `xi <= 0` the pairs
-/// are heated, as the dynamics says. A system without friction is left alone.
+/// are heated, as the dynamics says. Without `noise` (On, PNHL) `sigma_ij = 0` and no normal is
+/// drawn: `u_new = u exp(-x)`. A system without friction is left alone.
 #[inline]
-pub fn adaptive_ou(sys: &mut System, h: f64, stream: u8, order: SweepOrder) {
+pub fn adaptive_ou(sys: &mut System, h: f64, stream: u8, order: SweepOrder, noise: bool) {
     let (gamma, sigma, xi) = (sys.params().gamma(), sys.params().sigma(), sys.xi());
     if gamma == 0.0 {
         return;
     }
     let mark = sys.heat_mark();
     match sys.params().friction_by_type() {
-        false => adaptive_with(sys, Uniform(gamma, sigma), xi, h, stream, order),
-        true => adaptive_with(sys, ByType(1.0), xi, h, stream, order),
+        false => adaptive_with(sys, Uniform(gamma, sigma), xi, h, stream, order, noise),
+        true => adaptive_with(sys, ByType(1.0), xi, h, stream, order, noise),
     }
     sys.record_heat(mark);
 }
@@ -49,12 +61,17 @@ fn adaptive_with(
     h: f64,
     stream: u8,
     order: SweepOrder,
+    noise: bool,
 ) {
     let change = move |ends: Ends, r: f64| {
         let (gamma, sigma) = friction.of(ends);
+        let sigma = if noise { sigma } else { 0.0 };
         adaptive_ou_update(xi * gamma, sigma, h, ends.pair().wr, ends.mu(), r)
     };
-    sweep(sys, stream, order, pair_by_pair(change));
+    match noise {
+        true => sweep(sys, stream, order, pair_by_pair(change)),
+        false => sweep_noiseless(sys, stream, order, pair_by_pair(change)),
+    }
 }
 
 /// The Oa update of one pair (see [`adaptive_ou`]) with friction `friction = xi gamma_ij`
@@ -79,10 +96,14 @@ pub fn adaptive_ou_update(friction: f64, sigma: f64, h: f64, wr: f64, mu: f64, r
 /// Xi: `xi += h G / mu` with `G = sum over pairs gamma_ij w_D (u_ij^2 - kbt mu_ij)` at the
 /// current positions and momenta (which it does not change), exact for its own flow. The sum
 /// runs in the sweep order, run by run and colour by colour, so it is the same on any number
-/// of threads. Without a thermostat mass (which [`System::check_scheme`] refuses for a scheme
-/// with Xi) or a friction, `xi` stays.
+/// of threads. With a thermostat friction `gamma_xi` (PNHL) the exact Ornstein-Uhlenbeck flow
+/// under that drift, `xi exp(-gamma_xi h) + G (1 - exp(-gamma_xi h)) / (mu gamma_xi)
+/// + sqrt(kbt (1 - exp(-2 gamma_xi h)) / mu) R`, with the standard normal `R` drawn under the
+/// system's seed from a stream apart from the sweeps', keyed by the stage's `number` in the
+/// step. Without a thermostat mass (which [`System::check_scheme`] refuses for a scheme with
+/// Xi) or a friction, `xi` stays.
 #[inline]
-pub fn xi_update(sys: &mut System, h: f64) {
+pub fn xi_update(sys: &mut System, h: f64, number: u8) {
     let (Some(mass), kbt) = (sys.params().thermostat_mass(), sys.params().kbt()) else {
         return;
     };
@@ -93,7 +114,18 @@ pub fn xi_update(sys: &mut System, h: f64) {
         false => feedback(sys, Uniform(sys.params().gamma(), 0.0), kbt),
         true => feedback(sys, ByType(1.0), kbt),
     };
-    let xi = sys.xi() + h * g / mass;
+    let xi = match sys.params().thermostat_friction() {
+        None => sys.xi() + h * g / mass,
+        Some(gamma_xi) => {
+            // Keyed as the pair (MAX - number, MAX - number), which neither a pair of
+            // particles nor an accept/reject test (part, part) is.
+            let key = u32::MAX - u32::from(number);
+            let r = pair_normal(sys.seed(), sys.step(), APART_STREAM, key, key);
+            let decay = expm1(-gamma_xi * h);
+            let std = (-kbt * expm1(-2.0 * gamma_xi * h) / mass).sqrt();
+            sys.xi() * (1.0 + decay) - decay * g / (mass * gamma_xi) + std * r
+        }
+    };
     // Non-finite only when the momenta are: the guarded step reports that as a blow-up.
     let _ = sys.set_xi(xi);
 }

@@ -20,9 +20,10 @@ pub fn propose(sys: &mut System) {
     sys.keep_proposal_start(sys.kinetic_energy() + potential, potential);
 }
 
-/// The Philox stream of the accept/reject tests: the sweeps' streams are numbered from 0 and
-/// end below it (the language allows at most 255 of them per step).
-const TEST_STREAM: u8 = u8::MAX;
+/// The Philox stream of the accept/reject tests and of Xi's noise (PNHL): the sweeps'
+/// streams are numbered from 0 and end below it (the language allows at most 255 of them per
+/// step).
+pub(super) const APART_STREAM: u8 = u8::MAX;
 
 /// `}`: the Metropolis test of the state reached since `{`, on a uniform `U` drawn under the
 /// system's seed from the stream of this step's tests, keyed as the pair `(part, part)` (which
@@ -34,7 +35,7 @@ pub fn accept(sys: &mut System, part: u8) {
     let energy = sys.kinetic_energy() + sys.adjusted_potential();
     let change = energy - sys.proposal_start_energy();
     let part = u32::from(part);
-    let mut rng = PairRng::new(sys.seed(), sys.step(), TEST_STREAM, part, part);
+    let mut rng = PairRng::new(sys.seed(), sys.step(), APART_STREAM, part, part);
     let uniform = (rng.next_u64() >> 11) as f64 * f64::EPSILON / 2.0;
     let accepted = !change.is_finite() || uniform < (-change / sys.params().kbt()).exp();
     sys.settle_proposal(accepted);

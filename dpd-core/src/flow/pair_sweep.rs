@@ -39,11 +39,34 @@ pub struct Change {
 /// and recording switches are resolved here, once per sweep, not per pair.
 #[inline(always)]
 pub(super) fn sweep(sys: &mut System, stream: u8, order: SweepOrder, changes: impl Changes) {
+    sweep_with_draws(sys, stream, order, Draws::Normals, changes);
+}
+
+/// [`sweep`] of a flow without noise: `changes` is given zeros, no normal is drawn.
+#[inline(always)]
+pub(super) fn sweep_noiseless(
+    sys: &mut System,
+    stream: u8,
+    order: SweepOrder,
+    changes: impl Changes,
+) {
+    sweep_with_draws(sys, stream, order, Draws::Keyed, changes);
+}
+
+/// [`sweep`] with the engine's normals if `draws` asks for them.
+#[inline(always)]
+fn sweep_with_draws(
+    sys: &mut System,
+    stream: u8,
+    order: SweepOrder,
+    draws: Draws,
+    changes: impl Changes,
+) {
     sweep_drawing(
         sys,
         stream,
         order,
-        Draws::Normals,
+        draws,
         // Inlined, as every closure between the engine and the lanes: the engine's AVX2
         // context reaches the O sweep's vector code only through inlined calls.
         #[inline(always)]

@@ -92,9 +92,9 @@ pub fn balance_defined(sys: &System, scheme: &dyn Scheme) -> Result<(), ParamErr
                  energy change, which the balance of heat and shadow work does not describe \
                  (valid stages: A, B, O, Ob, L)"
             }
-            Flow::Oa | Flow::Xi => {
-                "has Oa and Xi, the adaptive thermostat, whose friction factor xi carries energy \
-                 of its own (mu (xi - 1)^2 / 2): the particles' energy change is neither heat nor \
+            Flow::Oa | Flow::On | Flow::Xi => {
+                "has Oa or On and Xi, an adaptive thermostat (PAdL, PNHL), whose friction factor \
+                 xi carries energy of its own (mu (xi - 1)^2 / 2, PNHL mu xi^2 / 2): the particles' energy change is neither heat nor \
                  work (valid stages: A, B, O, Ob, L)"
             }
         };

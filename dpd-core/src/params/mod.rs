@@ -25,7 +25,10 @@ use serde::{Deserialize, Serialize};
 ///   (per unit time, finite, > 0), for schemes with an L stage; unset otherwise.
 /// - `thermostat_mass`: the mass `mu` of PAdL's adaptive friction factor `xi` (an energy, in
 ///   the units of `kbt`; finite, > 0), for schemes with Oa and Xi: at equilibrium `xi` is
-///   Gaussian around 1 with variance `kbt / mu`. Unset otherwise.
+///   Gaussian around 1 with variance `kbt / mu` (PNHL, On and Xi: around 0). Unset otherwise.
+/// - `thermostat_friction`: the friction `gamma_xi` of the Langevin dynamics of `xi` in the
+///   pairwise Nose-Hoover-Langevin thermostat (PNHL; per unit time, finite, > 0), for schemes
+///   with On and Xi; unset otherwise (and refused with Oa, whose `xi` centres on 1).
 ///
 /// A matrix whose entries are all equal (for the cut-offs: all equal to `rc`) is stored as one
 /// value, so that a system whose pairs share a coefficient runs the loops of one.
@@ -47,6 +50,7 @@ pub struct Params {
     s: f64,
     collision_rate: Option<f64>,
     thermostat_mass: Option<f64>,
+    thermostat_friction: Option<f64>,
 }
 
 /// Unvalidated parameters; [`ParamsBuilder::build`] checks them. Defaults are the standard
@@ -80,6 +84,10 @@ pub struct ParamsBuilder {
     /// stored by checkpoints after the collision rate, as that is.
     #[serde(skip)]
     pub thermostat_mass: Option<f64>,
+    /// The friction `gamma_xi` of PNHL's `xi` (per unit time), for schemes with On and Xi;
+    /// stored by checkpoints after the thermostat mass.
+    #[serde(skip)]
+    pub thermostat_friction: Option<f64>,
 }
 
 impl Default for ParamsBuilder {
@@ -94,6 +102,7 @@ impl Default for ParamsBuilder {
             weight_exponent: 2.0,
             collision_rate: None,
             thermostat_mass: None,
+            thermostat_friction: None,
         }
     }
 }
@@ -144,6 +153,11 @@ impl ParamsBuilder {
         self.thermostat_mass = Some(mu);
         self
     }
+    /// The friction `gamma_xi` of PNHL's friction factor, per unit time.
+    pub fn thermostat_friction(mut self, gamma_xi: f64) -> Self {
+        self.thermostat_friction = Some(gamma_xi);
+        self
+    }
 
     /// Validate every field; the first invalid one is reported.
     pub fn build(self) -> Result<Params, ParamError> {
@@ -169,6 +183,9 @@ impl ParamsBuilder {
             .transpose()?;
         let thermostat_mass = (self.thermostat_mass)
             .map(|mu| positive("thermostat_mass", mu))
+            .transpose()?;
+        let thermostat_friction = (self.thermostat_friction)
+            .map(|g| positive("thermostat_friction", g))
             .transpose()?;
         let gamma_ij = match &self.gamma_matrix {
             Some(rows) => symmetric("gamma_matrix", rows, types, at_least_zero)?,
@@ -217,6 +234,7 @@ impl ParamsBuilder {
             s,
             collision_rate,
             thermostat_mass,
+            thermostat_friction,
         })
     }
 }
@@ -314,6 +332,10 @@ impl Params {
     pub fn thermostat_mass(&self) -> Option<f64> {
         self.thermostat_mass
     }
+    /// The friction `gamma_xi` of PNHL's friction factor (per unit time), if set.
+    pub fn thermostat_friction(&self) -> Option<f64> {
+        self.thermostat_friction
+    }
 
     /// `w_R(r) = (1 - r/r_c)^(s/2)` for `r < r_c`, given `w = 1 - r/r_c`.
     #[inline(always)]
@@ -349,6 +371,7 @@ impl From<Params> for ParamsBuilder {
             weight_exponent: p.s,
             collision_rate: p.collision_rate,
             thermostat_mass: p.thermostat_mass,
+            thermostat_friction: p.thermostat_friction,
         }
     }
 }
@@ -380,6 +403,14 @@ mod tests {
             (
                 Params::builder().thermostat_mass(f64::NAN),
                 "thermostat_mass",
+            ),
+            (
+                Params::builder().thermostat_friction(-1.0),
+                "thermostat_friction",
+            ),
+            (
+                Params::builder().thermostat_friction(f64::NAN),
+                "thermostat_friction",
             ),
             (Params::builder().a(f64::NAN), "a[0][0]"),
             (

@@ -57,9 +57,14 @@ pub(crate) fn hamiltonian_factors<S: Scalar>(stages: &[Stage], coeffs: &[S]) -> 
                 .collect(),
             // The braces of a Metropolis-adjusted part: the word they hold is analysed
             // unadjusted.
-            Flow::O | Flow::Bbk | Flow::L | Flow::Oa | Flow::Xi | Flow::Propose | Flow::Accept => {
-                continue
-            }
+            Flow::O
+            | Flow::Bbk
+            | Flow::L
+            | Flow::Oa
+            | Flow::On
+            | Flow::Xi
+            | Flow::Propose
+            | Flow::Accept => continue,
         };
         match factors.last_mut() {
             Some((last, sum)) if *last == letters => *sum = sum.plus(c),

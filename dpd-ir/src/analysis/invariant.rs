@@ -215,9 +215,9 @@ fn adjoint_factors<S: Scalar>(
                     .chain([(letters.o(k), c.clone())])
                     .collect()
             })),
-            // F is not a splitting of exact flows; Oa and Xi move the adaptive friction
+            // F is not a splitting of exact flows; Oa, On and Xi move the adaptive friction
             // factor xi, a variable the A, B and O generators do not describe.
-            Flow::F | Flow::Oa | Flow::Xi => return None,
+            Flow::F | Flow::Oa | Flow::On | Flow::Xi => return None,
             // The braces: the bound is the unadjusted word's (the adjusted chain's measure is
             // exact, [`crate::analysis::Analysis::metropolis_adjusted`]).
             Flow::Propose | Flow::Accept => {}

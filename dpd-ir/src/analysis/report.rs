@@ -24,7 +24,7 @@ pub struct Analysis {
     /// Every degree checked matched: the order is at least `deterministic_order`.
     pub deterministic_order_capped: bool,
     /// Bound `p` of the left-ideal criterion: `f_n = 0` for `0 < n < p`. `None` for schemes
-    /// with F stages (not a splitting of exact flows) or with Oa and Xi (the adaptive friction
+    /// with F stages (not a splitting of exact flows) or with Oa, On and Xi (the adaptive friction
     /// is a variable outside the criterion's generators): measure them.
     pub invariant_measure_order: Option<u32>,
     /// The criterion found nothing up to the maximal order checked: the bound is at least
@@ -85,8 +85,8 @@ impl fmt::Display for Analysis {
             )?,
             None => writeln!(
                 f,
-                "invariant-measure order: not applicable (F stages are not exact flows, and Oa and Xi \
-                 move the adaptive friction xi, which the A, B and O generators do not describe; \
+                "invariant-measure order: not applicable (F stages are not exact flows, and Oa, On and \
+                 Xi move the adaptive friction xi, which the A, B and O generators do not describe; \
                  measure it)"
             )?,
         }

@@ -43,7 +43,7 @@ pub const GROUPS: [Group; 2] = [
 
 /// Every sub-flow letter. Spellings start with an uppercase letter followed by lowercase
 /// letters only, so that `ObBAB` reads as `Ob B A B`.
-pub const LETTERS: [Letter; 9] = [
+pub const LETTERS: [Letter; 10] = [
     Letter {
         spelling: "A",
         flow: Flow::A,
@@ -93,9 +93,15 @@ pub const LETTERS: [Letter; 9] = [
         groups: &[],
     },
     Letter {
+        spelling: "On",
+        flow: Flow::On,
+        meaning: "pairwise Nose-Hoover sweep (PNHL): Oa without the pair noise, u *= exp(-xi gamma_ij w_D mu_ij h)",
+        groups: &[],
+    },
+    Letter {
         spelling: "Xi",
         flow: Flow::Xi,
-        meaning: "PAdL's friction factor xi += h/mu sum gamma_ij w_D (u_ij^2 - kbt (1/m_i + 1/m_j))",
+        meaning: "the friction factor xi += h/mu sum gamma_ij w_D (u_ij^2 - kbt (1/m_i + 1/m_j)); OU around 0 with thermostat_friction (PNHL)",
         groups: &[],
     },
 ];
@@ -191,7 +197,7 @@ mod tests {
             assert_eq!(letter(l.spelling), Some(&l));
             assert_eq!(spelling(l.flow), l.spelling);
         }
-        assert_eq!(spellings(), "A, B, O, Ob, T, F, L, Oa, Xi");
+        assert_eq!(spellings(), "A, B, O, Ob, T, F, L, Oa, On, Xi");
         for g in GROUPS {
             assert_eq!(group(g.spelling), Some(&g));
             assert_eq!(group_spelling(g.group), g.spelling);

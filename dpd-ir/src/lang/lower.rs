@@ -72,25 +72,32 @@ fn merge(apps: Vec<Application>) -> Result<Vec<Application>, Vec<Diagnostic>> {
 /// Stages of `apps`: each stochastic application takes the next random stream, except that
 /// applications of one frozen-noise group share the stream of the group's first one. An
 /// accept/reject `}` draws from a stream apart (so `{B A B} O` sweeps with the noise of
-/// `B A B O`): its stream field numbers the Metropolis-adjusted parts, 0, 1, ...
+/// `B A B O`): its stream field numbers the Metropolis-adjusted parts, 0, 1, ...; so does an
+/// Xi's field number the Xi stages (their noise, with a thermostat friction, is drawn apart).
 fn stages(apps: &[Application]) -> Result<Vec<Stage>, Vec<Diagnostic>> {
     let mut next = 0usize;
-    let mut parts = 0usize;
+    let mut counts = [0usize; 2];
     let mut groups: HashMap<usize, u8> = HashMap::new();
     let mut errors = Vec::new();
     let mut out = Vec::with_capacity(apps.len());
     for a in apps {
         let mut stream = 0;
-        if a.flow == Flow::Accept {
-            let Ok(part) = u8::try_from(parts) else {
+        // `}` numbers the Metropolis-adjusted parts, Xi its own stages, each from 0.
+        let counted = match a.flow {
+            Flow::Accept => Some((0, "Metropolis-adjusted parts")),
+            Flow::Xi => Some((1, "Xi stages")),
+            _ => None,
+        };
+        if let Some((k, what)) = counted {
+            let Ok(number) = u8::try_from(counts[k]) else {
                 errors.push(Diagnostic::new(
-                    "scheme has more than 256 Metropolis-adjusted parts per step",
+                    format!("scheme has more than 256 {what} per step"),
                     a.span.clone(),
                 ));
                 break;
             };
-            stream = part;
-            parts += 1;
+            stream = number;
+            counts[k] += 1;
         } else if a.flow.is_stochastic() {
             if let Some(&s) = a.noise.and_then(|g| groups.get(&g)) {
                 stream = s;

@@ -20,7 +20,8 @@
 //! | `F` | explicit full-force kick p += h (F^C + F^D + F^R), all forces or F[pair] |
 //! | `L` | Lowe-Andersen pairwise collisions at rate Gamma, exact in distribution |
 //! | `Oa` | adaptive pairwise Ornstein-Uhlenbeck sweep (PAdL): friction xi gamma_ij, noise sigma_ij fixed |
-//! | `Xi` | PAdL's friction factor xi += h/mu sum gamma_ij w_D (u_ij^2 - kbt (1/m_i + 1/m_j)) |
+//! | `On` | pairwise Nose-Hoover sweep (PNHL): Oa without the pair noise, u *= exp(-xi gamma_ij w_D mu_ij h) |
+//! | `Xi` | the friction factor xi += h/mu sum gamma_ij w_D (u_ij^2 - kbt (1/m_i + 1/m_j)); OU around 0 with thermostat_friction (PNHL) |
 //!
 //! Names of sub-flows and sub-schemes start with an uppercase letter and continue with
 //! lowercase letters, digits or `_`, so an uppercase letter always starts a new name:

@@ -105,33 +105,39 @@ fn one_thermostat(apps: &[Application]) -> Option<Diagnostic> {
     ))
 }
 
-/// The adaptive thermostat (PAdL) is the pair Oa (friction xi gamma_ij) and Xi (the update of
-/// xi): Oa without Xi is DPD at a frozen friction, Xi without Oa a variable nothing reads; and
-/// with O, Ob, T, F or L as well the step would approximate two thermostats at once.
+/// The adaptive thermostats are an adaptive sweep, Oa (PAdL) or On (PNHL, without pair noise),
+/// with friction xi gamma_ij, and Xi (the update of xi): the sweep without Xi is DPD at a frozen
+/// friction, Xi without the sweep a variable nothing reads; and with another pairwise sweep (O,
+/// Ob, T, F, L, or the other adaptive one) the step would approximate two thermostats at once.
 fn adaptive_pair(apps: &[Application]) -> Option<Diagnostic> {
-    let find = |flow: Flow| apps.iter().find(|a| a.flow == flow);
-    let (oa, xi) = (find(Flow::Oa), find(Flow::Xi));
-    let other = apps
-        .iter()
-        .find(|a| a.flow.is_stochastic() && a.flow != Flow::Oa);
-    let (message, at) = match (oa, xi, other) {
-        (None, None, _) => return None,
-        (Some(oa), _, Some(other)) => (
+    let sweep = apps.iter().find(|a| matches!(a.flow, Flow::Oa | Flow::On));
+    let xi = apps.iter().find(|a| a.flow == Flow::Xi);
+    let other = |s: &Application| {
+        apps.iter()
+            .find(|a| a.flow.is_stochastic() && a.flow != s.flow)
+    };
+    let (message, at) = match (sweep, xi) {
+        (None, None) => return None,
+        (Some(s), _) if other(s).is_some() => (
             format!(
-                "Oa (the adaptive pairwise thermostat) cannot be combined with the pairwise thermostat of {}: a scheme thermostats with Oa and Xi alone",
-                spelling(other.flow)
+                "{} (the adaptive pairwise thermostat) cannot be combined with the pairwise thermostat of {}: a scheme thermostats with Oa and Xi or On and Xi alone",
+                spelling(s.flow),
+                spelling(other(s)?.flow)
             ),
-            oa,
+            s,
         ),
-        (Some(oa), None, _) => (
-            "Oa needs an Xi stage: Oa's friction xi gamma_ij adapts only through the updates of xi by Xi (PAdL: e.g. B A Xi(1/2) Oa Xi(1/2) A B)".to_string(),
-            oa,
+        (Some(s), None) => (
+            format!(
+                "{} needs an Xi stage: its friction xi gamma_ij adapts only through the updates of xi by Xi (PAdL: e.g. B A Xi(1/2) Oa Xi(1/2) A B; PNHL: B A Xi(1/2) On Xi(1/2) A B)",
+                spelling(s.flow)
+            ),
+            s,
         ),
-        (None, Some(xi), _) => (
-            "Xi needs an Oa stage: xi scales the friction of the adaptive sweep Oa, which no other letter reads".to_string(),
+        (None, Some(xi)) => (
+            "Xi needs an Oa or On stage: xi scales the friction of the adaptive sweeps Oa and On, which no other letter reads".to_string(),
             xi,
         ),
-        (Some(_), Some(_), None) => return None,
+        (Some(_), Some(_)) => return None,
     };
     Some(Diagnostic::new(message, at.span.clone()))
 }
@@ -259,7 +265,7 @@ impl Generator {
         match self {
             Generator::A => "A coefficients (A stages)".to_string(),
             Generator::Kick(k) => format!("{k} coefficients ({} stages)", k.carriers()),
-            Generator::O => "O coefficients (O, Ob, T, F, L and Oa stages)".to_string(),
+            Generator::O => "O coefficients (O, Ob, T, F, L, Oa and On stages)".to_string(),
             Generator::Xi => "Xi coefficients (Xi stages)".to_string(),
         }
     }

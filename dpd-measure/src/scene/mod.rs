@@ -9,7 +9,7 @@
 //! | section | file | keys |
 //! |---|---|---|
 //! | [`RunSpec`] | `run.rs` | `scheme`, `dt`, `time`, `average_fraction`, `sample_interval`, `seed`, `runs`, `threads` |
-//! | [`Physics`] | `physics.rs` | `a`, `gamma`, `kbt`, `mass`, `weight_exponent`, `collision_rate`, `thermostat_mass`, `shear_rate`, `body_force` |
+//! | [`Physics`] | `physics.rs` | `a`, `gamma`, `kbt`, `mass`, `weight_exponent`, `collision_rate`, `thermostat_mass`, `thermostat_friction`, `shear_rate`, `body_force` |
 //! | [`Species`] | `species.rs` | `[[species]]`, `[pairs]` |
 //! | [`Molecules`] | `molecules.rs` | `[[bond_types]]`, `[[angle_types]]`, `[[molecules]]`, `exclude_bonded` |
 //! | [`Geometry`] | `geometry.rs` | `n`, `density`, `box`, `skin`, `init`, `init_reset`, `[walls]` |

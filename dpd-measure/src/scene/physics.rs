@@ -7,7 +7,7 @@ use dpd_core::{ParamError, Params};
 use serde::{Deserialize, Serialize};
 
 /// Keys `a`, `gamma`, `kbt`, `mass`, `weight_exponent`, `collision_rate`, `thermostat_mass`,
-/// `shear_rate`, `body_force`.
+/// `thermostat_friction`, `shear_rate`, `body_force`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Physics {
@@ -26,6 +26,9 @@ pub struct Physics {
     /// Mass mu of PAdL's adaptive friction factor xi (energy units), for schemes with Oa and
     /// Xi: xi fluctuates around 1 with variance kbt / mu.
     pub thermostat_mass: Option<f64>,
+    /// Friction gamma_xi of the Langevin dynamics of xi (per unit time), for PNHL's schemes
+    /// with On and Xi: xi fluctuates around 0 with variance kbt / mu.
+    pub thermostat_friction: Option<f64>,
     /// Lees-Edwards shear rate kappa (x-velocity gradient along y); a non-zero rate measures
     /// the shear viscosity.
     pub shear_rate: Option<f64>,
@@ -45,6 +48,7 @@ impl Default for Physics {
             weight_exponent: 2.0,
             collision_rate: None,
             thermostat_mass: None,
+            thermostat_friction: None,
             shear_rate: None,
             body_force: None,
         }
@@ -68,6 +72,9 @@ impl Physics {
         if let Some(mu) = self.thermostat_mass {
             positive("thermostat_mass", mu)?;
         }
+        if let Some(gamma_xi) = self.thermostat_friction {
+            positive("thermostat_friction", gamma_xi)?;
+        }
         if let Some(k) = self.shear_rate {
             require("shear_rate", k, k.is_finite(), "must be finite")?;
         }
@@ -87,6 +94,7 @@ impl Physics {
         ParamsBuilder {
             collision_rate: self.collision_rate,
             thermostat_mass: self.thermostat_mass,
+            thermostat_friction: self.thermostat_friction,
             ..Params::builder()
                 .a(self.a)
                 .gamma(self.gamma)

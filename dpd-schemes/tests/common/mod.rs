@@ -5,6 +5,7 @@ use dpd_core::init::{cubic_box, maxwell_momenta, uniform_positions};
 use dpd_core::observe::{thermo, ThermoAverages, ThermoSummary};
 use dpd_core::params::ParamsBuilder;
 use dpd_core::{AdvanceError, Params, Scheme, System};
+use dpd_schemes::stability::with_thermostat_friction;
 
 /// `n` particles of mass `mass` at `density`, uniform positions, Maxwell momenta.
 pub fn system(
@@ -32,17 +33,25 @@ pub fn system(
 /// <w_D> = 0.0604 over the fluid's g(r) (docs/design-search.md).
 pub const COLLISION_RATE: f64 = 0.54;
 
-/// The thermostat mass of the adaptive (PAdL) schemes in these tests: 10 gamma^2 at
+/// The thermostat mass of the adaptive (PAdL, PNHL) schemes in these tests: 10 gamma^2 at
 /// gamma = 4.5, so that xi = 1 +- 0.07 (docs/design-search.md).
 pub const THERMOSTAT_MASS: f64 = 202.5;
 
 /// The standard equilibrium box (algorithms.md section 8): N = 500, density 3, a = 25,
 /// gamma = 4.5, k_B T = 1, m = 1, s = 2; collision rate [`COLLISION_RATE`] for schemes
-/// with L.
-pub fn standard_box(dt: f64, seed: u64) -> System {
+/// with L, thermostat mass [`THERMOSTAT_MASS`] for PAdL and PNHL, and the stability matrix's
+/// thermostat friction for `scheme` if it is PNHL's.
+pub fn standard_box(scheme: &dyn Scheme, dt: f64, seed: u64) -> System {
     let params =
         (Params::builder().collision_rate(COLLISION_RATE)).thermostat_mass(THERMOSTAT_MASS);
-    system(500, 3.0, 1.0, params, dt, seed)
+    system(
+        500,
+        3.0,
+        1.0,
+        with_thermostat_friction(params, scheme),
+        dt,
+        seed,
+    )
 }
 
 /// The low-mass scene (algorithms.md section 8) in a periodic box: N = 500, density 4,
