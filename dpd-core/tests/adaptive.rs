@@ -102,8 +102,8 @@ fn a_scheme_with_xi_needs_a_thermostat_mass() {
 /// PNHL's invariant density `exp(-H / kT) exp(-mu xi^2 / (2 kT))` (flow/adaptive.rs): xi has
 /// mean 0 and variance kT / mu = 0.04, and k_B T_K = k_B T, though no pair draws noise: the
 /// Langevin part of xi (gamma_xi = 1) is the only noise. Same box, step and length as PAdL's
-/// test above, xi starting at 1. Measured: xi -0.0004 +- 0.0009, variance 0.0405 +- 0.0019,
-/// k_B T_K 0.9997 +- 0.0016; the bounds are about 3 standard errors. A feedback of the wrong sign sends xi away, a missing factor
+/// test above, xi starting at 0. Measured: xi -0.0001 +- 0.0009, variance 0.0401 +- 0.0021,
+/// k_B T_K 0.9991 +- 0.0020; the bounds are 2.5 to 3 standard errors. A feedback of the wrong sign sends xi away, a missing factor
 /// 2 in the noise of xi doubles the variance, an OU centred on 1 (PAdL's) moves the mean by 1.
 #[test]
 fn pnhl_samples_its_invariant_measure_with_the_noise_on_xi_alone() {

@@ -251,6 +251,12 @@ impl SystemBuilder {
                 .map(|(m, &f)| if f { 0.0 } else { 1.0 / m })
                 .collect(),
         };
+        // xi starts at the mean of its invariant measure: 1 for PAdL, 0 for PNHL (a thermostat
+        // friction set), where a start at 1 is a friction of gamma_ij the feedback must undo.
+        let xi = match self.params.thermostat_friction() {
+            Some(_) => 0.0,
+            None => 1.0,
+        };
         let mut sys = System {
             bx: self.bx,
             shear,
@@ -283,7 +289,7 @@ impl SystemBuilder {
             full_virial: None,
             impulses: None,
             heat: None,
-            xi: 1.0,
+            xi,
             proposal: Default::default(),
             acceptance: Default::default(),
             counters: Counters::default(),

@@ -105,7 +105,8 @@ pub struct System {
     /// pay for it; see [`crate::observe::EnergyBalance`]).
     heat: Option<f64>,
     /// PAdL's adaptive friction factor: Oa sweeps with friction `xi gamma_ij`, Xi moves it
-    /// (module `crate::flow`). Dimensionless; 1 at construction, where Oa is O.
+    /// (module `crate::flow`). Dimensionless; at construction 1, where Oa is O, or 0 with a
+    /// thermostat friction (PNHL, whose xi centres on 0).
     xi: f64,
     /// What the `{` of a Metropolis-adjusted part kept, and the potential energy it reuses.
     proposal: Proposal,
@@ -217,7 +218,8 @@ impl System {
         self.full_at = Stamp::default();
         Ok(())
     }
-    /// PAdL's adaptive friction factor `xi` (dimensionless, 1 until an Xi stage moves it).
+    /// PAdL's and PNHL's adaptive friction factor `xi` (dimensionless; 1, or 0 with a
+    /// thermostat friction, until an Xi stage moves it).
     pub fn xi(&self) -> f64 {
         self.xi
     }
