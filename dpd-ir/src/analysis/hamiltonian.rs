@@ -55,16 +55,11 @@ pub(crate) fn hamiltonian_factors<S: Scalar>(stages: &[Stage], coeffs: &[S]) -> 
                 .filter(|(_, k)| k.advanced_by(stage.flow, stage.group))
                 .map(|(x, _)| x)
                 .collect(),
+            // The thermostats are not part of the Hamiltonian splitting.
+            Flow::O | Flow::Bbk | Flow::L | Flow::Oa | Flow::On | Flow::Xi => continue,
             // The braces of a Metropolis-adjusted part: the word they hold is analysed
             // unadjusted.
-            Flow::O
-            | Flow::Bbk
-            | Flow::L
-            | Flow::Oa
-            | Flow::On
-            | Flow::Xi
-            | Flow::Propose
-            | Flow::Accept => continue,
+            Flow::Propose | Flow::Accept => continue,
         };
         match factors.last_mut() {
             Some((last, sum)) if *last == letters => *sum = sum.plus(c),
