@@ -205,6 +205,15 @@ impl DataFile {
             }
             let at = |what: &str| format!("section `{name}` (line {}): {what}", head.number);
             let expected = counts.rows(name, &file);
+            if body.len() < expected {
+                // A line of the section that starts with a letter ended it early: name it.
+                if let Some(next) = lines.peek().filter(|l| section_name(l).is_err()) {
+                    return Err(not_a_number(&Line {
+                        section: name,
+                        ..*next
+                    }));
+                }
+            }
             if body.len() != expected {
                 return Err(at(&format!(
                     "{} lines, the header asks for {expected}",
@@ -545,14 +554,20 @@ impl DataFile {
         Ok((id, type_in(l, 1, types, what)?, atoms))
     }
 
-    /// Checks across sections: the atoms the header counts, every atom with a velocity once
-    /// any has one.
+    /// Checks across sections: the atoms, bonds and angles the header counts, every atom with
+    /// a velocity once any has one.
     fn check(&self, counts: &Header) -> Result<(), String> {
-        if counts.atoms > 0 && self.atoms.is_empty() {
-            return Err(format!(
-                "the header has {} atoms and no `Atoms` section",
-                counts.atoms
-            ));
+        for (count, read, name) in [
+            (counts.atoms, self.atoms.len(), "Atoms"),
+            (counts.bonds, self.bonds.len(), "Bonds"),
+            (counts.angles, self.angles.len(), "Angles"),
+        ] {
+            if count > 0 && read == 0 {
+                return Err(format!(
+                    "the header has {count} {} and no `{name}` section",
+                    name.to_lowercase()
+                ));
+            }
         }
         if self.atoms.iter().any(|a| a.velocity.is_some())
             && self.atoms.iter().any(|a| a.velocity.is_none())
@@ -655,6 +670,17 @@ fn section_name<'a>(head: &Line<'a>) -> Result<&'a str, String> {
             SECTIONS.join(", ")
         ))
     }
+}
+
+/// The error of a line of section `l.section` whose first word, not a number, made it look
+/// like a section heading.
+fn not_a_number(l: &Line) -> String {
+    let first = l.text.split_whitespace().next().unwrap_or("");
+    let why = format!(
+        "`{first}` is not a number, and no section read here is named so (known: {})",
+        SECTIONS.join(", ")
+    );
+    at(l, &why)
 }
 
 /// A section's heading: a line that begins with a letter (data lines begin with numbers).

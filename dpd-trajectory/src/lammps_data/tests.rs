@@ -234,6 +234,24 @@ fn malformed_files_name_the_section_and_line() {
             "1 1 1 2 3\n2 1 2 3\n",
             "line 52 (section `Bonds`): a bond line is `id type` and 2 atom ids",
         ),
+        // A data line starting with a letter is named, not taken for a section heading.
+        (
+            "3 1 2 0.5",
+            "x 1 2 0.5",
+            "line 41 (section `Atoms`): `x` is not a number, and no section read here is \
+             named so (known: Atom Type Labels, ",
+        ),
+        // A count in the header whose section is missing.
+        (
+            "Bonds\n\n1 1 1 2\n2 1 2 3\n",
+            "",
+            "the header has 2 bonds and no `Bonds` section",
+        ),
+        (
+            "Angles\n\n1 1 1 2 3\n",
+            "",
+            "the header has 1 angles and no `Angles` section",
+        ),
     ] {
         assert!(FULL.contains(from), "{from}");
         let e = DataFile::parse(&FULL.replacen(from, to, 1)).unwrap_err();
