@@ -81,6 +81,31 @@ impl System {
         )
     }
 
+    /// What a blow-up that no bond beyond its reach explains adds: the bond nearest its reach
+    /// at the current positions (a FENE bond's force grows without bound toward `R0`, and can
+    /// fling a bead across the box within one drift, where no evaluation sees the bond past
+    /// `R0`); "" without bonds that have a reach.
+    pub(crate) fn nearest_reach_note(&self) -> String {
+        let Some(located) = &self.bonded else {
+            return String::new();
+        };
+        located
+            .nearest_reach(self.frame())
+            .map_or_else(String::new, |o| {
+                let topology = located.topology();
+                let bond = topology.bonds()[o.bond];
+                format!(
+                "; the bond nearest its reach at the step's start: bond {} between particles {} \
+                 and {}, length {:.6}, of style {}",
+                o.bond,
+                bond.i,
+                bond.j,
+                o.r,
+                topology.bond_types()[bond.kind as usize]
+            )
+            })
+    }
+
     /// Refuse a start with a bond beyond its reach (a FENE bond at or beyond `R0`).
     pub(crate) fn check_bond_lengths(&self) -> Result<(), ParamError> {
         let Some(located) = &self.bonded else {

@@ -36,7 +36,8 @@ impl System {
     /// displacement test could no longer tell that move from one to another image; without
     /// one, such a move between two force evaluations is taken as a blow-up), is undone and
     /// reported as a blow-up of `scheme`; the system is then in the state after the last
-    /// good step.
+    /// good step. A blow-up that found no bond past its reach names the FENE bond nearest
+    /// its reach at the step's start, if the system has FENE bonds.
     pub(crate) fn guarded_steps(
         &mut self,
         steps: u64,
@@ -73,7 +74,8 @@ impl System {
         self.overstretch = None;
         step(self);
         let (edge, skin) = (self.bx.min_length(), self.list.skin());
-        let reason = if let Some(o) = self.overstretch.take() {
+        let overstretch = self.overstretch.take();
+        let reason = if let Some(o) = overstretch {
             Some(self.overstretch_reason(o))
         } else if !self.drift_bound.is_finite() || !finite(&self.q) || !finite(&self.p) {
             Some("a position or momentum became non-finite".to_string())
@@ -107,10 +109,14 @@ impl System {
                 self.xi = backup.xi;
                 self.acceptance = backup.acceptance;
                 self.travel = backup.travel;
+                let note = match overstretch {
+                    None => self.nearest_reach_note(),
+                    Some(_) => String::new(),
+                };
                 Err(BlowUp {
                     step: self.step,
                     scheme: scheme.to_string(),
-                    reason,
+                    reason: reason + &note,
                 })
             }
         }

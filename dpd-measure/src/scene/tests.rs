@@ -394,3 +394,25 @@ fn a_melt_restarts_from_a_gsd_frame_with_its_chains() {
         "{e}"
     );
 }
+
+/// A FENE melt stepped far too coarsely: a bond near R0 flings a bead across the box within
+/// one drift, which no force evaluation of the step sees past R0. The blow-up still names a
+/// FENE bond, both its particles and its length (the step's start, where it is undone to).
+#[test]
+fn a_fene_melt_flung_apart_within_a_drift_names_a_bond() {
+    let text = "n = 300\n[[bond_types]]\nname = \"f\"\nstyle = \"fene\"\nk = 30.0\nr_max = 1.5\n\
+                [[molecules]]\nlength = 10\nfraction = 1.0\nbond = \"f\"\nstep = 0.9\n";
+    let mut sys = Scene::from_toml(text, "t").unwrap().system(0.1, 1).unwrap();
+    let aboba = dpd_schemes::registry::resolve("aboba").unwrap();
+    let Err(dpd_core::AdvanceError::BlowUp(e)) = sys.advance(aboba.as_ref(), 100) else {
+        panic!("no blow-up");
+    };
+    assert!(
+        e.reason.contains("a particle may have moved")
+            && e.reason
+                .contains("; the bond nearest its reach at the step's start: bond ")
+            && e.reason.ends_with("of style fene (K = 30, R0 = 1.5)"),
+        "{}",
+        e.reason
+    );
+}
