@@ -141,7 +141,7 @@ pub fn write_topology(topology: &Topology, data: &mut DataFile) -> Result<(), St
     })?;
     data.angle_coeffs = coefficients(angle_types, |s| match *s {
         AngleStyle::Cosine { k } => ("cosine", vec![k]),
-        AngleStyle::CosineSquared { k, theta0 } => ("cosine/squared", vec![k, theta0.to_degrees()]),
+        AngleStyle::CosineSquared { k, theta0 } => ("cosine/squared", vec![k, degrees(theta0)]),
     })?;
     let id = |i: u32| u64::from(i) + 1;
     data.bonds = (topology.bonds().iter().enumerate())
@@ -168,6 +168,21 @@ pub fn write_topology(topology: &Topology, data: &mut DataFile) -> Result<(), St
         atom.molecule = Some(molecules[(atom.id - 1) as usize]);
     }
     Ok(())
+}
+
+/// `theta` (radians) in degrees: the shortest of the doubles within 4 ulps of
+/// `theta.to_degrees()` that `to_radians` turns back into `theta` (that one itself where none
+/// does), so that an angle goes through a file unchanged: 105 degrees comes out of
+/// `to_degrees` as 105.00000000000001, which reads back as another double.
+fn degrees(theta: f64) -> f64 {
+    let d = theta.to_degrees();
+    let (mut near, mut up, mut down) = (vec![d], d, d);
+    for _ in 0..4 {
+        (up, down) = (up.next_up(), down.next_down());
+        near.extend([up, down]);
+    }
+    let back = near.into_iter().filter(|x| x.to_radians() == theta);
+    back.min_by_key(|x| x.to_string().len()).unwrap_or(d)
 }
 
 /// The coefficients of `types` under one style (LAMMPS's `bond_style` or `angle_style`).
