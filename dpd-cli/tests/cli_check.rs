@@ -1,6 +1,6 @@
 //! `dpd check` and `dpd orderings`: the JSON they print and the published results they
 //! reproduce.
-mod cli_support;
+use super::cli_support;
 
 use cli_support::{dpd, has_keys, json, refused};
 

@@ -1,5 +1,5 @@
 //! `dpd design`: order solutions of a family, and `--measure`'s sweep against ABOBA.
-mod cli_support;
+use super::cli_support;
 
 use cli_support::{dpd, json, write};
 

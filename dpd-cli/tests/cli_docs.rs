@@ -3,7 +3,7 @@
 //! flags in docs/scenes.md, and each flag a section names exists; the scene table of
 //! docs/scenes.md lists every scene key with its flag; and each JSON field table of docs/cli.md
 //! lists exactly the fields the program writes there.
-mod cli_support;
+use super::cli_support;
 
 use cli_support::{dpd, json, write};
 use serde_json::Value;

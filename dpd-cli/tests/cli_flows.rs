@@ -1,6 +1,6 @@
 //! `dpd run` on non-equilibrium scenes: the shear viscosity in the JSON (null with too few
 //! samples), the profile CSV header and SVG of a wall-bounded channel, bad keys refused.
-mod cli_support;
+use super::cli_support;
 
 use cli_support::{dpd, json, refused, write};
 

@@ -1,5 +1,5 @@
 //! `dpd kl` and the energy balance of `dpd run`.
-mod cli_support;
+use super::cli_support;
 
 use cli_support::{dpd, has_keys, json, refused};
 

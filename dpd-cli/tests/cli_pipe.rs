@@ -1,7 +1,7 @@
 //! A reader that goes away (`dpd orderings | head -1`) ends every command quietly with status
 //! 0: stdout or stderr a pipe whose reader closed it before the first write, or after reading
 //! one line of an output larger than the pipe's buffer.
-mod cli_support;
+use super::cli_support;
 
 use cli_support::{write, TINY};
 use std::io::{BufRead, BufReader, PipeWriter};

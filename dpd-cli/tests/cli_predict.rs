@@ -1,7 +1,7 @@
 //! `dpd predict` and `dpd orderings --rank predicted`: the JSON they print, the known answers
 //! of the harmonic model, the anharmonic correction's place and bad input (`dpd design --objective predicted` searches with
 //! `dpd_predict::design`, tested there).
-mod cli_support;
+use super::cli_support;
 
 use cli_support::{dpd, has_keys, json, refused};
 

@@ -1,5 +1,5 @@
 //! `dpd reproduce`: the list of paper items and the reduced protocol of every item.
-mod cli_support;
+use super::cli_support;
 
 use cli_support::{dpd, write};
 use std::path::Path;

@@ -1,5 +1,5 @@
 //! `dpd run`: the JSON object, blow-ups reported with exit code 0, bad input refused.
-mod cli_support;
+use super::cli_support;
 
 use cli_support::{dpd, has_keys, json, refused, write, RUN_FIELDS, TINY};
 

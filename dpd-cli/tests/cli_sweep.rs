@@ -1,5 +1,5 @@
 //! `dpd sweep`: the JSON results file, CSV and plots, and resuming from the results file.
-mod cli_support;
+use super::cli_support;
 
 use cli_support::{dpd, has_keys, refused, write, RUN_FIELDS, TINY};
 use std::path::Path;

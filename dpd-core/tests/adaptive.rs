@@ -3,7 +3,7 @@
 //! temperature held at a step where ABOBA's drifts), and what it needs; the same for the
 //! pairwise Nose-Hoover-Langevin thermostat (On and Xi with a thermostat friction, PNHL: xi
 //! around 0).
-mod common;
+use super::common;
 
 use dpd_core::observe::{block_mean, kinetic_temperature};
 use dpd_core::reference::Aboba;

@@ -1,5 +1,5 @@
 //! A step that blows up is reported with its number and scheme, and undone.
-mod common;
+use super::common;
 
 use dpd_core::reference::{Aboba, VelocityVerlet};
 

@@ -1,7 +1,7 @@
 //! Thermodynamic observables with bonded terms: the configurational temperature of exactly
 //! sampled molecules and the virial pressure against the volume derivative of the energy.
 
-mod common;
+use super::common;
 
 use dpd_core::bonded::{Angle, AngleStyle, Bond, BondStyle, Topology};
 use dpd_core::observe::{block_ratio_error, potential_energy, thermo};

@@ -1,7 +1,7 @@
 //! Bonded forces in dynamics: energy and momentum conservation, the stationary bond-length
 //! distribution, the FENE guard and which schemes a bonded system accepts.
 
-mod common;
+use super::common;
 
 use common::{
     assert_energy_error_of_order_dt_squared, blow_up, bond_lengths, bond_quantities, chain_melt,

@@ -1,6 +1,6 @@
 //! The configurational-temperature estimator gives k_B T on configurations sampled from
 //! exp(-U / k_B T) by Metropolis Monte Carlo.
-mod common;
+use super::common;
 
 use dpd_core::observe::{thermo, Running};
 use dpd_core::{Params, Vec3};

@@ -1,6 +1,6 @@
 //! Trajectories depend neither on the number of threads nor on whether observables are
 //! measured along the way.
-mod common;
+use super::common;
 
 use dpd_core::observe::thermo;
 use dpd_core::reference::{Aboba, DpdS1, VelocityVerlet};

@@ -1,5 +1,5 @@
 //! Velocity Verlet and ABOBA at dt = 0.01 sample k_B T = 1 on the standard box.
-mod common;
+use super::common;
 
 use dpd_core::observe::{thermo, ThermoAverages};
 use dpd_core::reference::{Aboba, VelocityVerlet};

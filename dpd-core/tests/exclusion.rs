@@ -3,7 +3,7 @@
 //! conservation, and the exact bond-length density of dimers whose only interaction within
 //! the dimer is the bond.
 
-mod common;
+use super::common;
 
 use common::{
     assert_energy_error_of_order_dt_squared, bond_lengths, bond_quantities, chain_melt, integral,

@@ -2,7 +2,7 @@
 //! sliding boundary conserve momentum, the streaming profile is linear with slope kappa, the
 //! viscosity does not depend on how a scheme applies the pair forces, and restarts and thread
 //! counts do not change a sheared trajectory.
-mod common;
+use super::common;
 
 use common::Steps;
 use dpd_core::flow::{bbk, drift, full_force, ou, trotter};

@@ -1,7 +1,7 @@
 //! Lowe-Andersen collisions (the L letter): on an ideal gas they leave the Maxwellian exactly
 //! invariant, drive any start towards it, and conserve momentum to rounding; a scheme with L
 //! needs a collision rate.
-mod common;
+use super::common;
 
 use dpd_core::init::uniform_positions;
 use dpd_core::{AdvanceError, DynScheme, Params, PeriodicBox, Scheme, SweepOrder, System, Vec3};

@@ -1,7 +1,7 @@
 //! Metropolis-adjusted steps (`{...}`, generalised hybrid Monte Carlo): the Gibbs measure
 //! exactly at a step where the unadjusted scheme is far off, the unadjusted trajectory while
 //! every proposal is accepted, the same bits on any thread count, and what such a step needs.
-mod common;
+use super::common;
 
 use dpd_core::observe::{block_mean, kinetic_temperature, thermo, EnergyBalance};
 use dpd_core::{AdvanceError, DynScheme, Params, Scheme, System, Vec3};

@@ -1,5 +1,5 @@
 //! Every pairwise sub-flow conserves total momentum to rounding error.
-mod common;
+use super::common;
 
 use dpd_core::params::ParamsBuilder;
 use dpd_core::{Params, System};

@@ -1,6 +1,6 @@
 //! The exact pairwise O sweep reaches and keeps the stationary variance k_B T / m_ij of the
 //! relative normal velocity, across tau*h from 0 to 1e6.
-mod common;
+use super::common;
 
 use dpd_core::flow::ou;
 use dpd_core::{Params, Scheme, SweepOrder, System};

@@ -1,6 +1,6 @@
 //! The run-time stage interpreter reproduces the hand-written reference steps bit for bit, and
 //! the evaluation counters match the costs the scheme language promises.
-mod common;
+use super::common;
 
 use dpd_core::reference::{Aboba, DpdS1, VelocityVerlet};
 use dpd_core::{DynScheme, Scheme};

@@ -1,5 +1,5 @@
 //! A run restarted from a checkpoint continues bit for bit; bad checkpoints are clear errors.
-mod common;
+use super::common;
 
 use dpd_core::reference::{Aboba, DpdS1, VelocityVerlet};
 use dpd_core::{CheckpointError, Scheme, System};

@@ -1,7 +1,7 @@
 //! Friction and cut-off per pair of types: each pair's exact O sweep relaxes its relative normal
 //! velocity with its own rate to its own stationary variance, and the conservative forces are
 //! those of a direct sum over all pairs within their cut-offs.
-mod common;
+use super::common;
 
 use dpd_core::flow::ou;
 use dpd_core::{Params, PeriodicBox, Scheme, SweepOrder, System, Vec3};

@@ -1,7 +1,7 @@
 //! Wall-bounded flows: body-force driven Poiseuille flow has a parabolic velocity profile,
 //! moving walls drive a linear (Couette) profile, fluid particles stay in the channel, and bad
 //! wall set-ups are clear errors.
-mod common;
+use super::common;
 
 use dpd_core::init::{maxwell_momenta, uniform_positions};
 use dpd_core::observe::{fit_line, Profile};

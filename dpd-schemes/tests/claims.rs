@@ -1,7 +1,7 @@
 //! Each entry's documented claims (cost, orders, symmetry, consistency) checked against the
 //! order analysis, the evaluation counters and, for hand-written schemes, measured
 //! convergence; and the known results of algorithms.md section 4.
-mod common;
+use super::common;
 
 use dpd_core::reference::{Aboba, DpdS1, VelocityVerlet};
 use dpd_core::{Params, Scheme, System, Vec3};

@@ -2,7 +2,7 @@
 //! schemes stay stable where the relaxation rate c ~ gamma / m makes the velocity equation
 //! stiff, and sample the target temperature once c dt < 1 as their source recommends. What
 //! velocity Verlet does there is measured and reported, not asserted.
-mod common;
+use super::common;
 
 use dpd_core::observe::ThermoSummary;
 use dpd_core::AdvanceError;

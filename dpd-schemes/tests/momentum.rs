@@ -1,6 +1,6 @@
 //! Pairwise schemes conserve total momentum to rounding error; the per-particle exponential
 //! schemes do not, and their drift is reported.
-mod common;
+use super::common;
 
 use dpd_core::{Params, Scheme, System};
 use dpd_schemes::registry::entries;

@@ -3,7 +3,7 @@
 //! normal velocities, exactly at any step, as Peters (Europhys. Lett. 66, 311 (2004)) designed
 //! it; the same holds for the midpoint (BBK) update `Ob`. The explicit DPD forces of velocity
 //! Verlet at a fifth of the step do not.
-mod common;
+use super::common;
 
 use dpd_core::init::{cubic_box, maxwell_momenta, uniform_positions};
 use dpd_core::{DynScheme, Params, Scheme, System};

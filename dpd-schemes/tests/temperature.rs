@@ -1,5 +1,5 @@
 //! Every registered scheme samples k_B T = 1 on the standard box at a small time step.
-mod common;
+use super::common;
 
 use dpd_schemes::registry::entries;
 use rayon::prelude::*;

@@ -1,6 +1,6 @@
 //! The weak order of ABOBA's temperature errors on the standard box (gamma = 4.5), measured as
 //! the slope of log |error| against log dt between dt = 0.04 and 0.08.
-mod common;
+use super::common;
 
 use dpd_schemes::registry::lookup;
 use rayon::prelude::*;

@@ -1,5 +1,4 @@
 //! Running the built `dpd` binary in the command-line tests.
-#![allow(dead_code)]
 
 use std::path::Path;
 use std::process::{Command, Output};

@@ -1,5 +1,4 @@
 //! Shared set-up of the core's integration tests.
-#![allow(dead_code)]
 
 use dpd_core::bonded::{Angle, AngleStyle, Bond, BondStyle, Topology};
 use dpd_core::flow::{bbk, drift, full_force, kick, ou, trotter};

@@ -1,5 +1,4 @@
 //! Scenes and helpers shared by the catalogue's tests.
-#![allow(dead_code)]
 
 use dpd_core::init::{cubic_box, maxwell_momenta, uniform_positions};
 use dpd_core::observe::{thermo, ThermoAverages, ThermoSummary};
