@@ -1,4 +1,7 @@
 //! Shared set-up of the core's integration tests.
+// Also included by path in the root crate's tests/macro_equivalence.rs and
+// benches/generated_vs_handwritten.rs, which use part of it.
+#![allow(dead_code)]
 
 use dpd_core::bonded::{Angle, AngleStyle, Bond, BondStyle, Topology};
 use dpd_core::flow::{bbk, drift, full_force, kick, ou, trotter};
