@@ -33,8 +33,8 @@ pub struct Args {
     /// frame's
     #[arg(long, value_name = "FILE.gsd[:K]|FILE.data")]
     init: Option<String>,
-    /// Write each run's last state as a LAMMPS data file (FILE.data); replaces the scene's
-    /// write_data
+    /// Write each run's last state as a LAMMPS data file (FILE.data; with several runs, run
+    /// seed k writes FILE-seedk.data); replaces the scene's write_data
     #[arg(long, value_name = "FILE.data")]
     write_data: Option<PathBuf>,
     /// With --init: count the trajectory's step, time and images from 0 instead
