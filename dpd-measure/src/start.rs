@@ -232,11 +232,15 @@ pub type InitialState = (Vec<Vec3>, Vec<Vec3>, Vec<f64>, Vec<u16>);
 pub fn initial_state(f: &Frame, type_masses: &[f64]) -> Result<InitialState, ParamError> {
     let types = type_masses.len();
     if let Some(i) = f.typeid.iter().position(|&t| t as usize >= types) {
+        let names = f.types.join(", ");
         return Err(ParamError::new(
             format!("init: typeid of particle {i}"),
             f.typeid[i],
             format!(
-                "the scene has {types} particle type(s): type ids 0 to {}",
+                "the frame has {} types ({names}), the scene {types}: give [[species]] {names} \
+                 in this order with their [pairs], or a data file's PairIJ Coeffs (type ids 0 \
+                 to {})",
+                f.types.len(),
                 types - 1
             ),
         ));

@@ -346,30 +346,34 @@ fn a_scene_s_chains_build_a_bonded_system() {
 /// draws the chains), and the melt restarts from a frame: the scene's chains give the topology
 /// (GSD holds no coefficients), and the frame's bonds must be theirs; a scene without
 /// molecules or with other chains is refused, naming init.
+/// `sys` of `scene` written as the first frame of the GSD file `file`.
+fn gsd_frame(scene: &Scene, sys: &mut dpd_core::System, file: &Path) -> std::path::PathBuf {
+    let spec = crate::scene::TrajectorySpec {
+        file: file.to_path_buf(),
+        every: 1.0,
+        fields: None,
+    };
+    let (names, origin) = (scene.type_names(1), crate::start::Origin::default());
+    crate::observer::Recorder::start(&spec, 0.05, (3, 1), names, origin, sys).unwrap();
+    spec.file
+}
+
 #[test]
 fn a_melt_restarts_from_a_gsd_frame_with_its_chains() {
-    use crate::observer::Recorder;
-    use crate::scene::TrajectorySpec;
     let melt = "n = 60\n[[bond_types]]\nname = \"b\"\nstyle = \"harmonic\"\nk = 2.0\n\
                 [[molecules]]\nlength = 4\ncount = 5\nbond = \"b\"\n";
     let scene = Scene::from_toml(melt, "t").unwrap();
     let mut sys = scene.system(0.05, 3).unwrap();
     let dir = tempfile::tempdir().unwrap();
-    let spec = TrajectorySpec {
-        file: dir.path().join("melt.gsd"),
-        every: 1.0,
-        fields: None,
-    };
-    let origin = crate::start::Origin::default();
-    Recorder::start(&spec, 0.05, (3, 1), scene.type_names(1), origin, &mut sys).unwrap();
-    let read = dpd_trajectory::gsd::GsdReader::open(&spec.file).unwrap();
+    let file = gsd_frame(&scene, &mut sys, &dir.path().join("melt.gsd"));
+    let read = dpd_trajectory::gsd::GsdReader::open(&file).unwrap();
     let bonds = read.frame(0).unwrap().bonds.unwrap();
     assert_eq!(
         (bonds.types, bonds.typeid),
         (vec!["1".to_string()], vec![0; 15])
     );
     assert_eq!(&bonds.group[..4], [[0, 1], [1, 2], [2, 3], [4, 5]]);
-    let init = format!("init = {:?}\n", spec.file.display().to_string());
+    let init = format!("init = {:?}\n", file.display().to_string());
     // The frame's 60 particles and box are the scene's: `n` is left out.
     let again = Scene::from_toml(&format!("{init}{}", &melt["n = 60\n".len()..]), "t").unwrap();
     again.validate().unwrap();
@@ -414,5 +418,25 @@ fn a_fene_melt_flung_apart_within_a_drift_names_a_bond() {
             && e.reason.ends_with("of style fene (K = 30, R0 = 1.5)"),
         "{}",
         e.reason
+    );
+}
+
+/// A GSD frame of a mixture started by a scene without species: the error names the frame's
+/// types and what the scene must give, not only a type id out of range.
+#[test]
+fn a_gsd_frame_of_a_mixture_names_its_types_to_a_scene_without_species() {
+    let mixture = "n = 60\n[[species]]\nname = \"A\"\nfraction = 0.5\n[[species]]\nname = \"B\"\n\
+                   fraction = 0.5\n[pairs]\nA-A = { a = 25.0 }\nB-B = { a = 25.0 }\n\
+                   A-B = { a = 40.0 }\n";
+    let scene = Scene::from_toml(mixture, "t").unwrap();
+    let mut sys = scene.system(0.05, 3).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let file = gsd_frame(&scene, &mut sys, &dir.path().join("mix.gsd"));
+    let init = format!("init = {:?}\n", file.display().to_string());
+    let e = Scene::from_toml(&init, "t").unwrap().system(0.05, 3);
+    let e = e.unwrap_err().to_string();
+    assert!(
+        e.contains("the frame has 2 types (A, B), the scene 1: give [[species]] A, B"),
+        "{e}"
     );
 }
