@@ -146,14 +146,26 @@ impl Scene {
 
     /// The scene file `file` (or the default scene) with `keys` merged over its own (tables
     /// key by key), validated. `keys` are scene keys as a scene file writes them: the command
-    /// line's flags and Python's keywords arrive here.
+    /// line's flags and Python's keywords arrive here. A caller's `n` over a file's `box`,
+    /// which would ignore it, is refused.
     pub fn resolve(file: Option<&Path>, keys: &Keys) -> Result<Scene, SceneError> {
         let (mut base, path) = match file {
             Some(path) => (read(path)?, path.display().to_string()),
             None => (Keys::new(), "(default)".to_string()),
         };
+        let file_box = base.contains_key("box") && !keys.contains_key("box");
         section::merge(&mut base, keys);
         let scene = Scene::from_keys(base, &path)?;
+        if let (true, Some(n), Some(edges)) = (file_box, keys.get("n"), scene.geometry.box_lengths)
+        {
+            let why = format!(
+                "is not used with the scene file's box = {edges:?}, which holds {} particles at \
+                 density {}: change the density, or give a box",
+                scene.geometry.particles(),
+                scene.geometry.density
+            );
+            return Err(ParamError::new("n", n, why).into());
+        }
         scene.validate()?;
         Ok(scene)
     }

@@ -111,6 +111,35 @@ fn keys_given_by_a_caller_replace_the_scene_file_s() {
     assert!(e.to_string().contains("did you mean `density`"), "{e}");
 }
 
+/// A caller's `n` over a scene file with `box`, which would ignore it, is refused (the box and
+/// density set the particle count); `n` and `box` from one source keep the documented rule.
+#[test]
+fn a_caller_s_n_over_a_scene_file_s_box_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("box.toml");
+    std::fs::write(
+        &file,
+        "box = [16.0, 4.0, 4.0]
+",
+    )
+    .unwrap();
+    let e = Scene::resolve(Some(&file), &keys("n = 300")).unwrap_err();
+    assert!(
+        e.to_string().contains(
+            "invalid n = 300: is not used with the scene file's box = [16.0, 4.0, 4.0], which \
+             holds 768 particles at density 3"
+        ),
+        "{e}"
+    );
+    let s = Scene::resolve(Some(&file), &keys("density = 2.0")).unwrap();
+    assert_eq!(s.geometry.particles(), 512);
+    let both = keys("n = 300\nbox = [16.0, 4.0, 4.0]");
+    assert_eq!(
+        Scene::resolve(None, &both).unwrap().geometry.particles(),
+        768
+    );
+}
+
 /// With `init`, the file's particle count and box are the scene's unless it sets `n`, `box`
 /// or `density`; what it sets and the file contradicts is refused when the run starts, naming
 /// both counts or boxes.
