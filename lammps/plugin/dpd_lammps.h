@@ -15,9 +15,8 @@ enum { DPD_LAMMPS_OK = 0, DPD_LAMMPS_NULL = 1, DPD_LAMMPS_INDEX = 2, DPD_LAMMPS_
 enum { DPD_LAMMPS_SWEEP_O = 0, DPD_LAMMPS_SWEEP_OB = 1, DPD_LAMMPS_SWEEP_T = 2 };
 
 typedef struct DpdLammpsKernels DpdLammpsKernels;
-/* The pairs within the sweeps' cutoff that a dpd/soft evaluation found, with their geometry,
-   by colour of their atom i, for the sweeps that follow at the same positions
-   (lammps/kernels/src/record.rs). */
+/* The pairs within the sweeps' cutoff that a dpd/soft evaluation found, by colour of their
+   atom i, for the sweeps that follow at the same positions (lammps/kernels/src/record.rs). */
 typedef struct DpdLammpsRecord DpdLammpsRecord;
 
 /* Per type-pair tables (gamma, rc; dpd/soft's a, rc) hold (ntypes + 1)^2 doubles at

@@ -822,8 +822,8 @@ void FixDPDSplit::sweep(const Stage &stage)
 {
   if (domain->box_change) check_subdomain_size();
   prepare_atoms();
-  // The pairs and their geometry from dpd/soft's evaluation at these positions, if it recorded
-  // one, else from the neighbour list.
+  // The pairs from dpd/soft's evaluation at these positions, if it recorded one, else from the
+  // neighbour list.
   bool from_record = recorded();
   if (from_record)
     colours_used = true;

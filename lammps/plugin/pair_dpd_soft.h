@@ -25,8 +25,8 @@ class PairDPDSoft : public Pair {
   const double *cutoffs() const { return cut.data(); }
   /// Record in `record` (fix dpd/split's, which colours its atoms) the pairs within the fix's
   /// cutoff (less those of special factor 0, which get no force and which the fix's sweeps
-  /// exclude) of every evaluation of this run, with their geometry (the fix asks for it in its
-  /// init(), after this style's init_style() has reset it): the fix's sweeps at the positions
+  /// exclude) of every evaluation of this run (the fix asks for it in its init(), after this
+  /// style's init_style() has reset it): the fix's sweeps at the positions
   /// of the last evaluation take them from the record instead of passing over the neighbour
   /// list. `recordings()` counts the evaluations recorded.
   void record_pairs(DpdLammpsRecord *record) { pair_record = record; }

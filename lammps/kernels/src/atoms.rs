@@ -85,11 +85,18 @@ impl Atoms<'_> {
         self.types[k] as usize
     }
 
+    /// The position of atom `k` (one bounds check).
+    #[inline(always)]
+    fn position(&self, k: usize) -> [f64; 3] {
+        let p = &self.x[3 * k..3 * k + 3];
+        [p[0], p[1], p[2]]
+    }
+
     /// The vector `x_i - x_j` and its square length.
     #[inline(always)]
     pub fn separation(&self, i: usize, j: usize) -> ([f64; 3], f64) {
-        let x = self.x;
-        let d: [f64; 3] = std::array::from_fn(|k| x[3 * i + k] - x[3 * j + k]);
+        let (xi, xj) = (self.position(i), self.position(j));
+        let d: [f64; 3] = std::array::from_fn(|k| xi[k] - xj[k]);
         (d, d[0] * d[0] + d[1] * d[1] + d[2] * d[2])
     }
 }

@@ -28,9 +28,35 @@ use dpd_core::flow::{bbk_update, ou_update, ou_updates, trotter_update, Change};
 use dpd_core::force::full_pair_force;
 use dpd_core::rng::pair_normal;
 use dpd_core::Params;
-use record::{Near, PairRecord};
+use record::PairRecord;
 use soft::SoftStyle;
 use std::ffi::c_int;
+
+/// Pairs per chunk of a sweep ([`Kernels::sweep_pairs`]): the chunk's geometry, normals and
+/// changes (96 bytes a pair, 24 KiB) stay in the L1 cache between its passes.
+const CHUNK: usize = 256;
+
+/// One pair within its cutoff `r_c,IJ`: atoms i and j, `e_ij = (x_i - x_j) / r`, the distance
+/// `r`, the weight `w = 1 - r / r_c,IJ` and the type pair's slot `I (ntypes + 1) + J` in the
+/// kernels' tables.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Near {
+    i: usize,
+    j: usize,
+    e: [f64; 3],
+    r: f64,
+    w: f64,
+    slot: usize,
+}
+
+/// The per-chunk buffers of a sweep, kept from chunk to chunk: the pairs within their cutoff,
+/// their normals and their changes.
+#[derive(Default)]
+struct Scratch {
+    near: Vec<Near>,
+    z: Vec<f64>,
+    changes: Vec<Change>,
+}
 
 /// Which pairwise sweep [`Kernels::sweep`] applies.
 #[repr(C)]
@@ -190,7 +216,7 @@ impl Kernels {
     /// The update of the pair `p` with inverse reduced mass `mu`, standard normal `z` and
     /// conservative pair force `f` (used by T only).
     fn change(&self, flow: SweepFlow, h: f64, p: &Near, mu: f64, z: f64, f: f64) -> Change {
-        let (c, wr) = (self.pairs[p.slot as usize], self.weights.w_r(p.w));
+        let (c, wr) = (self.pairs[p.slot], self.weights.w_r(p.w));
         match flow {
             SweepFlow::Ou => ou_update(c.gamma, self.kbt, h, wr, mu, z),
             SweepFlow::Bbk => bbk_update(c.gamma, c.sigma, h, h.max(0.0).sqrt(), wr, mu, z),
@@ -237,29 +263,7 @@ impl Kernels {
             Ok(None) => return DPD_LAMMPS_OK,
             Err(status) => return status,
         };
-        // In four passes, so that only the last is a chain of dependent updates: the pairs
-        // within their cutoff and their geometry; their normals, several pairs at a time
-        // (dpd-core's `pair_normals`, bitwise its `pair_normal`); their changes, each from its
-        // own geometry and noise (O with one friction several pairs at a time, dpd-core's
-        // `ou_updates`, bitwise its `ou_update`); then the velocity updates, one after the
-        // other in order.
-        let mut near = Vec::with_capacity(pairs.len());
-        for &[i, j] in pairs {
-            let (i, j) = (i as usize, j as usize);
-            let slot = self.slot(atoms, i, j);
-            if let Some((e, r, w)) = Self::geometry(atoms, i, j, self.pairs[slot].rc) {
-                let (i, j, slot) = (i as u32, j as u32, slot as u32);
-                near.push(Near {
-                    i,
-                    j,
-                    e,
-                    r,
-                    w,
-                    slot,
-                });
-            }
-        }
-        self.apply(flow, h, key, &near, reverse, atoms, v, conservative, virial);
+        self.sweep_pairs(flow, h, key, pairs, reverse, atoms, v, conservative, virial);
         DPD_LAMMPS_OK
     }
 
@@ -286,7 +290,7 @@ impl Kernels {
         if status != DPD_LAMMPS_OK {
             return status;
         }
-        let Some(near) = record.bucket(colour, atoms.len(), self.ntypes) else {
+        let Some(pairs) = record.bucket(colour, atoms.len(), self.ntypes) else {
             return DPD_LAMMPS_INDEX;
         };
         let conservative = match self.style(flow, conservative) {
@@ -294,8 +298,73 @@ impl Kernels {
             Ok(None) => return DPD_LAMMPS_OK,
             Err(status) => return status,
         };
-        self.apply(flow, h, key, near, reverse, atoms, v, conservative, virial);
+        self.sweep_pairs(flow, h, key, pairs, reverse, atoms, v, conservative, virial);
         DPD_LAMMPS_OK
+    }
+
+    /// Apply a sweep to `pairs` (indices below `atoms.len()`, checked with `v` by
+    /// [`Atoms::check`]; those beyond their cutoff skipped), `CHUNK` pairs at a time in the
+    /// sweep's order, each chunk in four passes so that only the last is a chain of dependent
+    /// updates: the pairs within their cutoff and their geometry; their normals, several pairs
+    /// at a time (dpd-core's `pair_normals`, bitwise its `pair_normal`); their changes, each
+    /// from its own geometry and noise (O with one friction several pairs at a time, dpd-core's
+    /// `ou_updates`, bitwise its `ou_update`); then the velocity updates, one after the other.
+    /// A chunk's passes stay in the cache, and the pairs' order is the sweep's: the same
+    /// updates, bit for bit, as one pass of each over all pairs.
+    #[allow(clippy::too_many_arguments)]
+    fn sweep_pairs(
+        &self,
+        flow: SweepFlow,
+        h: f64,
+        key: (u64, u64, u8),
+        pairs: &[[c_int; 2]],
+        reverse: bool,
+        atoms: &Atoms,
+        v: &mut [f64],
+        conservative: Option<&Conservative>,
+        mut virial: Option<&mut [f64; 6]>,
+    ) {
+        let mut scratch = Scratch::default();
+        scratch.near.reserve(CHUNK);
+        let mut chunk = |pairs: &[[c_int; 2]]| {
+            self.near_pairs(atoms, pairs, &mut scratch.near);
+            let virial = virial.as_deref_mut();
+            self.apply(
+                flow,
+                h,
+                key,
+                reverse,
+                atoms,
+                v,
+                conservative,
+                virial,
+                &mut scratch,
+            );
+        };
+        if reverse {
+            pairs.chunks(CHUNK).rev().for_each(&mut chunk);
+        } else {
+            pairs.chunks(CHUNK).for_each(&mut chunk);
+        }
+    }
+
+    /// The pairs of `pairs` within their cutoff, with their geometry, into `near`.
+    fn near_pairs(&self, atoms: &Atoms, pairs: &[[c_int; 2]], near: &mut Vec<Near>) {
+        near.clear();
+        for &[i, j] in pairs {
+            let (i, j) = (i as usize, j as usize);
+            let slot = self.slot(atoms, i, j);
+            if let Some((e, r, w)) = Self::geometry(atoms, i, j, self.pairs[slot].rc) {
+                near.push(Near {
+                    i,
+                    j,
+                    e,
+                    r,
+                    w,
+                    slot,
+                });
+            }
+        }
     }
 
     /// The conservative style a sweep of `flow` includes (`Some(None)` for O and Ob, which
@@ -316,38 +385,40 @@ impl Kernels {
         }
     }
 
-    /// The last three passes of a sweep over the pairs `near` within their cutoff (indices
-    /// below `atoms.len()`, checked with `v` by [`Atoms::check`]).
+    /// The last three passes of a sweep over the pairs `scratch.near` within their cutoff
+    /// (see [`Kernels::sweep_pairs`]).
     #[allow(clippy::too_many_arguments)]
     fn apply(
         &self,
         flow: SweepFlow,
         h: f64,
         (seed, step, stream): (u64, u64, u8),
-        near: &[Near],
         reverse: bool,
         atoms: &Atoms,
         v: &mut [f64],
         conservative: Option<&Conservative>,
         mut virial: Option<&mut [f64; 6]>,
+        scratch: &mut Scratch,
     ) {
-        let mut z = vec![0.0; near.len()];
-        let tags = |p: &Near| (atoms.tag.key(p.i as usize), atoms.tag.key(p.j as usize));
-        dpd_core::rng::pair_normals(seed, step, stream, |k| tags(&near[k]), &mut z);
+        let Scratch { near, z, changes } = scratch;
+        z.clear();
+        z.resize(near.len(), 0.0);
+        let tags = |p: &Near| (atoms.tag.key(p.i), atoms.tag.key(p.j));
+        dpd_core::rng::pair_normals(seed, step, stream, |k| tags(&near[k]), z);
         let inv_mass = atoms.inv_mass;
-        let mu = |p: &Near| inv_mass[p.i as usize] + inv_mass[p.j as usize];
-        let mut changes = Vec::with_capacity(near.len());
+        let mu = |p: &Near| inv_mass[p.i] + inv_mass[p.j];
+        changes.clear();
         match (flow, self.uniform_gamma) {
             (SweepFlow::Ou, Some(gamma)) => ou_updates(
                 (gamma, self.kbt, h),
                 |k| self.weights.w_r(near[k].w),
                 |k| mu(&near[k]),
-                &z,
-                &mut changes,
+                z,
+                changes,
             ),
-            _ => changes.extend(near.iter().zip(&z).map(|(p, &z)| {
+            _ => changes.extend(near.iter().zip(z.iter()).map(|(p, &z)| {
                 let f = conservative.map_or(0.0, |s| {
-                    let (ti, tj) = (atoms.type_of(p.i as usize), atoms.type_of(p.j as usize));
+                    let (ti, tj) = (atoms.type_of(p.i), atoms.type_of(p.j));
                     s.pair_force_of_types(ti, tj, p.r)
                 });
                 self.change(flow, h, p, mu(p), z, f)
@@ -359,7 +430,7 @@ impl Kernels {
         // of `v`, borrowed mutably here and not used otherwise while `v3` lives.
         let v3 = unsafe { std::slice::from_raw_parts_mut(v.as_mut_ptr().cast::<[f64; 3]>(), n) };
         let mut apply = |(p, change): (&Near, &Change)| {
-            let (i, j, e) = (p.i as usize, p.j as usize, p.e);
+            let (i, j, e) = (p.i, p.j, p.e);
             let (mi, mj) = (inv_mass[i], inv_mass[j]);
             let (vi, vj) = (v3[i], v3[j]);
             let u = (0..3).map(|k| e[k] * (vi[k] - vj[k])).sum::<f64>();
@@ -373,9 +444,9 @@ impl Kernels {
             }
         };
         if reverse {
-            near.iter().zip(&changes).rev().for_each(&mut apply);
+            near.iter().zip(changes.iter()).rev().for_each(&mut apply);
         } else {
-            near.iter().zip(&changes).for_each(&mut apply);
+            near.iter().zip(changes.iter()).for_each(&mut apply);
         }
     }
 
@@ -836,7 +907,8 @@ mod tests {
     /// The four-pass sweep against the plain loop it replaces (each pair in turn: geometry,
     /// `pair_normal`, change, update), bitwise, for every flow, both orders and two types with
     /// their own cutoff and their own friction or one friction (where O computes its updates
-    /// several at a time), on 60 atoms in a cube of side 2 (every pair listed).
+    /// several at a time), on 60 atoms in a cube of side 2 (every pair listed: 1770 pairs,
+    /// seven chunks of the sweep).
     #[test]
     fn the_sweep_is_bitwise_the_pair_by_pair_loop() {
         for gamma in [
@@ -890,10 +962,10 @@ mod tests {
                     let f = style.map_or(0.0, |s| {
                         s.pair_force_of_types(types[i] as usize, types[j] as usize, r)
                     });
-                    let (slot, ij) = (k.slot(&atoms, i, j) as u32, (i as u32, j as u32));
+                    let slot = k.slot(&atoms, i, j);
                     let near = Near {
-                        i: ij.0,
-                        j: ij.1,
+                        i,
+                        j,
                         e,
                         r,
                         w,

@@ -1,31 +1,19 @@
-//! The pairs within the sweeps' cutoff that a `dpd/soft` force evaluation found, with their
-//! geometry and weight, kept for the pairwise sweeps that follow at the same positions (ABOBA's
-//! O follows the force evaluation with no drift between; SAS's first T the previous step's
-//! evaluation), so that a sweep neither passes over the neighbour list nor over the pairs again.
+//! The pairs within the sweeps' cutoff that a `dpd/soft` force evaluation found, kept for the
+//! pairwise sweeps that follow at the same positions (ABOBA's O follows the force evaluation
+//! with no drift between; SAS's first T the previous step's evaluation), so that a sweep does
+//! not pass over the neighbour list again.
 //!
 //! The fix gives the record the colour (octant, 0 to 7) of every atom at the neighbour-list
-//! build ([`PairRecord::colour_atoms`]); the evaluation appends each pair to the bucket of its
-//! atom i's colour, in the neighbour list's order. A colour's bucket is then the sequence of
-//! pairs a sweep over the list's pairs of that colour's atoms visits (its atoms in the list's
-//! order, each atom's pairs in turn), and a sweep over it applies the same updates, bit for
-//! bit.
+//! build ([`PairRecord::colour_atoms`]); the evaluation appends each pair `(i, j)` to the
+//! bucket of its atom i's colour, in the neighbour list's order. A colour's bucket is then the
+//! sequence of pairs a sweep over the list's pairs of that colour's atoms visits (its atoms in
+//! the list's order, each atom's pairs in turn), and a sweep over it applies the same updates,
+//! bit for bit. Only the indices are kept (8 bytes a pair): the sweep computes each pair's
+//! geometry again from the same positions with the same operations, which costs less than
+//! writing and reading it back once the buckets outgrow the cache (docs/lammps-scaling.md).
 
 use crate::{Kernels, DPD_LAMMPS_NULL, DPD_LAMMPS_OK};
 use std::ffi::c_int;
-
-/// One pair within the sweeps' cutoff `r_c,IJ` of its types: atoms i and j, `e_ij = (x_i -
-/// x_j) / r`, the distance `r`, the weight `w = 1 - r / r_c,IJ` and the type pair's slot
-/// `I (ntypes + 1) + J` in the kernels' tables, computed as [`crate::Kernels`]' sweeps over a
-/// pair list compute them.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Near {
-    pub i: u32,
-    pub j: u32,
-    pub e: [f64; 3],
-    pub r: f64,
-    pub w: f64,
-    pub slot: u32,
-}
 
 /// The colour of an atom that has none (a ghost, or an atom the fix did not colour).
 const NO_COLOUR: u8 = u8::MAX;
@@ -42,47 +30,25 @@ pub struct PairRecord {
     natoms: usize,
     /// Whether every atom i of the evaluation had a colour (else the buckets are not used).
     complete: bool,
-    buckets: [Vec<Near>; 8],
+    buckets: [Vec<[c_int; 2]>; 8],
 }
 
 /// Where the pairs of one atom i go: its colour's bucket, with the sweeps' cutoffs.
 pub struct Bucket<'a> {
     rc: &'a [f64],
-    pairs: &'a mut Vec<Near>,
+    pairs: &'a mut Vec<[c_int; 2]>,
 }
 
 impl Bucket<'_> {
-    /// Add a pair of atom i within the pair style's cutoff `rc_style` of type-pair slot
-    /// `slot`, with separation `d = x_i - x_j`, `r2 = |d|^2`, `r = sqrt(r2)` and `w_style = 1 -
-    /// r / rc_style`, if it lies within the sweeps' cutoff of the slot (for a slot beyond the
-    /// kernels' types, nothing).
+    /// Add the pair `(i, j)` of type-pair slot `slot` at `r2 = |x_i - x_j|^2` if it lies within
+    /// the sweeps' cutoff of the slot (for a slot beyond the kernels' types, nothing).
     #[inline(always)]
-    pub fn push(
-        &mut self,
-        (i, j): (usize, usize),
-        d: [f64; 3],
-        (r, r2): (f64, f64),
-        slot: usize,
-        (rc_style, w_style): (f64, f64),
-    ) {
+    pub fn push(&mut self, (i, j): (usize, usize), r2: f64, slot: usize) {
         let Some(&rc) = self.rc.get(slot) else {
             return;
         };
         if r2 < rc * rc {
-            self.pairs.push(Near {
-                i: i as u32,
-                j: j as u32,
-                e: d.map(|c| c / r),
-                r,
-                // The same expression as the style's weight: the same bits when the cutoffs
-                // agree.
-                w: if rc == rc_style {
-                    w_style
-                } else {
-                    1.0 - r / rc
-                },
-                slot: slot as u32,
-            });
+            self.pairs.push([i as c_int, j as c_int]);
         }
     }
 }
@@ -136,10 +102,10 @@ impl PairRecord {
         }
     }
 
-    /// The recorded pairs of atoms of colour `colour`, in order, or `None` if the record is
-    /// not complete, not of these `natoms` atoms, of kernels of another number of types, or
-    /// `colour` is not 0 to 7.
-    pub fn bucket(&self, colour: usize, natoms: usize, ntypes: usize) -> Option<&[Near]> {
+    /// The recorded pairs of atoms of colour `colour`, in order (indices below `natoms`), or
+    /// `None` if the record is not complete, not of these `natoms` atoms, of kernels of another
+    /// number of types, or `colour` is not 0 to 7.
+    pub fn bucket(&self, colour: usize, natoms: usize, ntypes: usize) -> Option<&[[c_int; 2]]> {
         let valid = self.complete && natoms == self.natoms && ntypes == self.ntypes;
         self.buckets
             .get(colour)
