@@ -48,6 +48,7 @@ pub use species::{PairSpec, Species, TypeSpec};
 pub use sweep::{Observable, SweepSpec};
 
 use dpd_core::ParamError;
+use dpd_trajectory::lammps_data::DataFile;
 use section::{names, take, take_table, unknown};
 use serde::Serialize;
 use std::path::Path;
@@ -250,7 +251,36 @@ impl Scene {
                 self.geometry.particles()
             );
         }
-        out + &table.to_string()
+        out + &table.to_string() + &self.init_coefficients()
+    }
+
+    /// Comment lines with the coefficient sections of an `init` data file, which set what the
+    /// keys above do not show (without species, the file's pair coefficients are used instead
+    /// of `a` and `gamma`); "" for another start, or a file that cannot be read (the run then
+    /// says why).
+    fn init_coefficients(&self) -> String {
+        let Some(init) = self
+            .geometry
+            .init
+            .as_deref()
+            .filter(|f| f.ends_with(".data"))
+        else {
+            return String::new();
+        };
+        let sections = DataFile::coefficient_lines(Path::new(init)).unwrap_or_default();
+        let instead = match self.species.species {
+            None => " (used instead of a and gamma)",
+            Some(_) => "",
+        };
+        let line = |(heading, body): &(String, Vec<String>)| {
+            let used = if heading.starts_with("Pair") {
+                instead
+            } else {
+                ""
+            };
+            format!("# {init}, {heading}{used}: {}\n", body.join("; "))
+        };
+        sections.iter().map(line).collect()
     }
 }
 

@@ -111,18 +111,38 @@ fn keys_given_by_a_caller_replace_the_scene_file_s() {
     assert!(e.to_string().contains("did you mean `density`"), "{e}");
 }
 
+/// A run from a data file says the file's coefficients in its header, where the scene's `a`
+/// and `gamma` alone would mislead.
+#[test]
+fn the_header_of_a_run_from_a_data_file_says_its_coefficients() {
+    let melt = "n = 60\ngamma = 9.0\n[[bond_types]]\nname = \"b\"\nstyle = \"harmonic\"\n\
+                k = 2.0\nr0 = 0.5\n[[molecules]]\nlength = 4\ncount = 5\nbond = \"b\"\n";
+    let scene = Scene::from_toml(melt, "t").unwrap();
+    let sys = scene.system(0.05, 3).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("melt.data");
+    let data = crate::data_file::data_of(&sys, &scene.type_names(1), "t").unwrap();
+    data.write(&file).unwrap();
+    let init = file.display().to_string();
+    let header = Scene::from_toml(&format!("init = {init:?}\n"), "t")
+        .unwrap()
+        .to_toml();
+    assert!(
+        header.ends_with(&format!(
+            "\n# {init}, PairIJ Coeffs # dpd (used instead of a and gamma): 1 1 25 9 1\n\
+             # {init}, Bond Coeffs # harmonic: 1 2 0.5\n"
+        )),
+        "{header}"
+    );
+}
+
 /// A caller's `n` over a scene file with `box`, which would ignore it, is refused (the box and
 /// density set the particle count); `n` and `box` from one source keep the documented rule.
 #[test]
 fn a_caller_s_n_over_a_scene_file_s_box_is_refused() {
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join("box.toml");
-    std::fs::write(
-        &file,
-        "box = [16.0, 4.0, 4.0]
-",
-    )
-    .unwrap();
+    std::fs::write(&file, "box = [16.0, 4.0, 4.0]\n").unwrap();
     let e = Scene::resolve(Some(&file), &keys("n = 300")).unwrap_err();
     assert!(
         e.to_string().contains(

@@ -181,6 +181,31 @@ impl DataFile {
         Ok((counts.atoms, file.bounds))
     }
 
+    /// The coefficient sections (`Pair Coeffs`, `PairIJ Coeffs`, `Bond Coeffs`, `Angle
+    /// Coeffs`) of the file at `path`, each as its heading with the style comment and its lines
+    /// as written, the other sections skipped unread: what a header can say of a file before
+    /// a run reads it in full.
+    pub fn coefficient_lines(path: &Path) -> Result<Vec<(String, Vec<String>)>, TrajectoryError> {
+        let text = std::fs::read_to_string(path).map_err(TrajectoryError::io(path))?;
+        let mut sections: Vec<(String, Vec<String>)> = Vec::new();
+        let mut inside = false;
+        for l in lines(&text).1 {
+            if is_section(l.text) {
+                inside = l.text.ends_with(" Coeffs");
+                if inside {
+                    let heading = match l.comment {
+                        "" => l.text.to_string(),
+                        style => format!("{} # {style}", l.text),
+                    };
+                    sections.push((heading, Vec::new()));
+                }
+            } else if let Some((_, body)) = sections.last_mut().filter(|_| inside) {
+                body.push(l.text.to_string());
+            }
+        }
+        Ok(sections)
+    }
+
     /// Parse the text of a data file; the error names the line and section.
     pub fn parse(text: &str) -> Result<DataFile, String> {
         let (title, mut lines) = lines(text);

@@ -126,6 +126,27 @@ fn a_written_file_reads_back_the_same() {
 
 /// The size of a file comes from its header alone: the same count and bounds as a full read,
 /// and a header error is reported as by `read`, while the sections are not looked at.
+/// The coefficient sections come back as written, with their style comments; the others
+/// are skipped.
+#[test]
+fn the_coefficient_sections_are_read_alone() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("full.data");
+    std::fs::write(&path, FULL).unwrap();
+    let lines = |l: &[&str]| l.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+    assert_eq!(
+        DataFile::coefficient_lines(&path).unwrap(),
+        [
+            (
+                "PairIJ Coeffs # dpd".to_string(),
+                lines(&["1 1 25 4.5 1", "1 2 40 4.5 1", "2 2 25 4.5"])
+            ),
+            ("Bond Coeffs # harmonic".to_string(), lines(&["1 4 0"])),
+            ("Angle Coeffs # cosine".to_string(), lines(&["1 2"])),
+        ]
+    );
+}
+
 #[test]
 fn the_size_is_read_from_the_header() {
     let dir = tempfile::tempdir().unwrap();
