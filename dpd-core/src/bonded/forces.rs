@@ -252,24 +252,6 @@ impl Located {
         over.min_by_key(|o| o.bond)
     }
 
-    /// The bond nearest its style's reach at `frame` (the largest `r / R0` of the FENE bonds),
-    /// if any bond has a reach.
-    pub(crate) fn nearest_reach(&self, frame: Frame) -> Option<Overstretch> {
-        let styles = self.topology.bond_types();
-        let bonds = self.bonds.iter().zip(&self.bond_index);
-        let shares = bonds.filter_map(|(b, &n)| {
-            let r2 = frame.delta(b.i, b.j).norm_squared();
-            let share = styles[b.kind as usize].reach_share(r2)?;
-            let near = Overstretch {
-                bond: n as usize,
-                r: r2.sqrt(),
-            };
-            Some((share, near))
-        });
-        let nearest = shares.max_by(|a, b| a.0.total_cmp(&b.0).then(b.1.bond.cmp(&a.1.bond)));
-        nearest.map(|(_, near)| near)
-    }
-
     /// The bonded energy, Laplacian and virial at `frame` (NaN with an overstretched FENE
     /// bond).
     pub(crate) fn sums(&self, frame: Frame) -> BondedSums {

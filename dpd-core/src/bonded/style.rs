@@ -136,15 +136,6 @@ impl BondStyle {
         2.0 * (self.curvature(r2) - 2.0 * self.force_over_r(r2))
     }
 
-    /// How near a bond of squared length `r2` is to the style's reach: `r^2 / R0^2` for FENE,
-    /// `None` for a style without one.
-    pub(crate) fn reach_share(&self, r2: f64) -> Option<f64> {
-        match *self {
-            BondStyle::Harmonic { .. } => None,
-            BondStyle::Fene { r_max, .. } => Some(r2 / (r_max * r_max)),
-        }
-    }
-
     /// Whether a bond of squared length `r2` is beyond the style's reach: a FENE bond at or
     /// past `R0` (or a non-finite length).
     #[inline]

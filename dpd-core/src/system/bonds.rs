@@ -81,29 +81,32 @@ impl System {
         )
     }
 
-    /// What a blow-up that no bond beyond its reach explains adds: the bond nearest its reach
-    /// at the current positions (a FENE bond's force grows without bound toward `R0`, and can
-    /// fling a bead across the box within one drift, where no evaluation sees the bond past
-    /// `R0`); "" without bonds that have a reach.
-    pub(crate) fn nearest_reach_note(&self) -> String {
-        let Some(located) = &self.bonded else {
+    /// What a blow-up that no bond beyond its reach explains adds, read before the step is
+    /// undone: the particle on which the step's last bonded evaluation put the largest force,
+    /// and its bonds (a FENE bond's force grows without bound toward `R0` and can fling a bead
+    /// across the box within one drift, where no evaluation sees the bond past `R0`); ""
+    /// without bonds.
+    pub(crate) fn largest_bonded_force_note(&self) -> String {
+        let Some(topology) = self.topology().filter(|t| !t.bonds().is_empty()) else {
             return String::new();
         };
-        located
-            .nearest_reach(self.frame())
-            .map_or_else(String::new, |o| {
-                let topology = located.topology();
-                let bond = topology.bonds()[o.bond];
-                format!(
-                "; the bond nearest its reach at the step's start: bond {} between particles {} \
-                 and {}, length {:.6}, of style {}",
-                o.bond,
-                bond.i,
-                bond.j,
-                o.r,
-                topology.bond_types()[bond.kind as usize]
-            )
+        let forces = self.bonded_forces.iter().map(|f| f.norm()).enumerate();
+        let Some((k, largest)) = forces.max_by(|a, b| a.1.total_cmp(&b.1)) else {
+            return String::new();
+        };
+        let id = self.id[k];
+        let bonds: Vec<String> = (topology.bonds().iter().enumerate())
+            .filter(|(_, b)| b.i == id || b.j == id)
+            .map(|(n, b)| {
+                let style = topology.bond_types()[b.kind as usize];
+                format!("bond {n} between particles {} and {} ({style})", b.i, b.j)
             })
+            .collect();
+        format!(
+            "; the step's last bonded evaluation put its largest force, {largest:.3e}, on \
+             particle {id}, of {}",
+            bonds.join(", ")
+        )
     }
 
     /// Refuse a start with a bond beyond its reach (a FENE bond at or beyond `R0`).

@@ -36,8 +36,9 @@ impl System {
     /// displacement test could no longer tell that move from one to another image; without
     /// one, such a move between two force evaluations is taken as a blow-up), is undone and
     /// reported as a blow-up of `scheme`; the system is then in the state after the last
-    /// good step. A blow-up that found no bond past its reach names the FENE bond nearest
-    /// its reach at the step's start, if the system has FENE bonds.
+    /// good step. A blow-up of a system with bonds that found no bond past its reach names
+    /// the particle with the largest bonded force of the step's last evaluation, and its
+    /// bonds.
     pub(crate) fn guarded_steps(
         &mut self,
         steps: u64,
@@ -94,6 +95,10 @@ impl System {
                 Ok(())
             }
             Some(reason) => {
+                let note = match overstretch {
+                    None => self.largest_bonded_force_note(),
+                    Some(_) => String::new(),
+                };
                 std::mem::swap(&mut self.q, &mut backup.q);
                 std::mem::swap(&mut self.p, &mut backup.p);
                 self.restore_order(&backup.id);
@@ -109,10 +114,6 @@ impl System {
                 self.xi = backup.xi;
                 self.acceptance = backup.acceptance;
                 self.travel = backup.travel;
-                let note = match overstretch {
-                    None => self.nearest_reach_note(),
-                    Some(_) => String::new(),
-                };
                 Err(BlowUp {
                     step: self.step,
                     scheme: scheme.to_string(),
