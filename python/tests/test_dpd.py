@@ -115,7 +115,7 @@ def test_every_scene_key_is_a_keyword():
 
 
 def test_an_inconsistent_scheme_runs_when_allowed_as_the_message_says():
-    with pytest.raises(ValueError, match="pass allow_inconsistent"):
+    with pytest.raises(ValueError, match="accept it anyway with allow_inconsistent"):
         dpd.Simulation(scheme="A B(1/2) O", n=100)
     sim = dpd.Simulation(scheme="A B(1/2) O", n=100, allow_inconsistent=True)
     sim.run(steps=5)
