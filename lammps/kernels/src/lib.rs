@@ -258,13 +258,7 @@ impl Kernels {
         if status != DPD_LAMMPS_OK {
             return status;
         }
-        let conservative = match self.style(flow, conservative) {
-            Ok(Some(style)) => style,
-            Ok(None) => return DPD_LAMMPS_OK,
-            Err(status) => return status,
-        };
-        self.sweep_pairs(flow, h, key, pairs, reverse, atoms, v, conservative, virial);
-        DPD_LAMMPS_OK
+        self.sweep_pairs(flow, h, key, pairs, reverse, atoms, v, conservative, virial)
     }
 
     /// [`Kernels::sweep`] over the pairs of `record` (a `dpd/soft` evaluation at the current
@@ -293,13 +287,7 @@ impl Kernels {
         let Some(pairs) = record.bucket(colour, atoms.len(), self.ntypes) else {
             return DPD_LAMMPS_INDEX;
         };
-        let conservative = match self.style(flow, conservative) {
-            Ok(Some(style)) => style,
-            Ok(None) => return DPD_LAMMPS_OK,
-            Err(status) => return status,
-        };
-        self.sweep_pairs(flow, h, key, pairs, reverse, atoms, v, conservative, virial);
-        DPD_LAMMPS_OK
+        self.sweep_pairs(flow, h, key, pairs, reverse, atoms, v, conservative, virial)
     }
 
     /// Apply a sweep to `pairs` (indices below `atoms.len()`, checked with `v` by
@@ -310,7 +298,8 @@ impl Kernels {
     /// from its own geometry and noise (O with one friction several pairs at a time, dpd-core's
     /// `ou_updates`, bitwise its `ou_update`); then the velocity updates, one after the other.
     /// A chunk's passes stay in the cache, and the pairs' order is the sweep's: the same
-    /// updates, bit for bit, as one pass of each over all pairs.
+    /// updates, bit for bit, as one pass of each over all pairs. Returns `DPD_LAMMPS_STYLE`,
+    /// changing nothing, when [`Kernels::style`] refuses `conservative`.
     #[allow(clippy::too_many_arguments)]
     fn sweep_pairs(
         &self,
@@ -323,7 +312,12 @@ impl Kernels {
         v: &mut [f64],
         conservative: Option<&Conservative>,
         mut virial: Option<&mut [f64; 6]>,
-    ) {
+    ) -> c_int {
+        let conservative = match self.style(flow, conservative) {
+            Ok(Some(style)) => style,
+            Ok(None) => return DPD_LAMMPS_OK,
+            Err(status) => return status,
+        };
         let mut scratch = Scratch::default();
         scratch.near.reserve(CHUNK);
         let mut chunk = |pairs: &[[c_int; 2]]| {
@@ -346,6 +340,7 @@ impl Kernels {
         } else {
             pairs.chunks(CHUNK).for_each(&mut chunk);
         }
+        DPD_LAMMPS_OK
     }
 
     /// The pairs of `pairs` within their cutoff, with their geometry, into `near`.
