@@ -238,23 +238,24 @@ impl Fill<'_> {
             ..
         } = self;
         let rc = params.rc();
-        let rc2 = rc * rc;
-        let inv_rc = 1.0 / rc;
+        // Captured by value (`move`), as every closure below: behind references the pair loops
+        // loaded these again for every hit (the pushes store through pointers the compiler
+        // cannot tell apart from them).
+        let (rc2, inv_rc, w_r) = (rc * rc, 1.0 / rc, params.random_weight());
         // The pair of `(i, j)` at separation `d`, `r2 = |d|^2`, `r = sqrt(r2)`, `inv = 1 / r`.
-        let geometry = |i: u32, j: u32, d: Vec3, r: f64, inv: f64| {
+        let geometry = move |i: u32, j: u32, d: Vec3, r: f64, inv: f64| {
             let w = 1.0 - r * inv_rc;
             Pair {
                 i,
                 j,
                 e: d * inv,
                 w,
-                wr: params.w_r(w),
+                wr: w_r(w),
             }
         };
-        let interacts = |r2: f64| r2 < rc2 && r2 > 0.0;
-        let pair = |i: u32, j: u32, d: Vec3| -> Option<Pair> {
+        let pair = move |i: u32, j: u32, d: Vec3| -> Option<Pair> {
             let r2 = d.norm_squared();
-            interacts(r2).then(|| {
+            (r2 < rc2 && r2 > 0.0).then(|| {
                 let r = r2.sqrt();
                 geometry(i, j, d, r, 1.0 / r)
             })
@@ -269,11 +270,14 @@ impl Fill<'_> {
                 rc,
                 &mut table.pairs,
                 #[inline(always)]
-                |h, out| {
+                move |h, out| {
                     out.reserve(h.len());
                     let kept = keep.with(h.a());
-                    for k in 0..h.len() {
-                        if interacts(h.r2[k]) {
+                    // Over a slice of `r2`, so that `k` is known to be in bounds of every array.
+                    for (k, &r2) in h.r2[..h.len()].iter().enumerate() {
+                        // The scan's hits are closer than `rc` (the same test of the same
+                        // `r2`): only coincident particles are left out here.
+                        if r2 > 0.0 {
                             let (j, d) = h.get(k);
                             if kept(j) {
                                 out.push(geometry(h.a(), j, d, h.r[k], h.inv_r[k]));

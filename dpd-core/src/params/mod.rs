@@ -340,12 +340,22 @@ impl Params {
     /// `w_R(r) = (1 - r/r_c)^(s/2)` for `r < r_c`, given `w = 1 - r/r_c`.
     #[inline(always)]
     pub fn w_r(&self, w: f64) -> f64 {
-        if self.s == 2.0 {
-            w
-        } else if self.s == 1.0 {
-            w.sqrt()
-        } else {
-            w.powf(0.5 * self.s)
+        self.random_weight()(w)
+    }
+
+    /// [`Params::w_r`] as a function holding the exponent by value: a pair loop that stores
+    /// through pointers keeps it in a register, where `w_r` read it from `self` for every pair.
+    #[inline(always)]
+    pub fn random_weight(&self) -> impl Fn(f64) -> f64 + Copy + Sync {
+        let s = self.s;
+        move |w: f64| {
+            if s == 2.0 {
+                w
+            } else if s == 1.0 {
+                w.sqrt()
+            } else {
+                w.powf(0.5 * s)
+            }
         }
     }
 }
