@@ -9,11 +9,14 @@ time of the timed run, after a warm-up run (setup excluded). With `--cpu`, also 
 per particle-step, summed over the ranks: the difference between a run with the timed steps
 twice and one with them once, each measured as the CPU time of the child processes
 (getrusage), so that, unlike wall time, it leaves out the time spent waiting for a core on a
-loaded machine. Standard library only.
+loaded machine. With `--timers`, also LAMMPS's timer breakdown of the timed run (the average
+over the ranks of Pair, Neigh, Comm, Output, Modify and Other), in wall ns per particle-step.
+Standard library only.
 
     python3 scripts/lammps/bench.py --lmp VENV/bin/lmp --mpirun VENV/bin/mpirun \\
         --plugin PLUGIN.so --work DIR [--n 24000] [--ranks 1 --ranks 2] [--steps 200]
         [--warmup 200] [--variant NAME]... [--thermo N] [--thermo-style "custom step temp"] [--cpu]
+        [--timers]
 """
 
 import argparse
@@ -88,6 +91,21 @@ def run(args, path, ranks):
     return out, (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
 
 
+SECTIONS = ("Pair", "Neigh", "Comm", "Output", "Modify", "Other")
+
+
+def timers(stdout, steps, atoms):
+    """The average time of each of LAMMPS's timer sections in the last run's breakdown, in ns per
+    particle-step, as "Pair 123 / Neigh 456 / ..." (sections it does not print left out)."""
+    table = stdout.rsplit("MPI task timing breakdown", 1)[-1]
+    cells = []
+    for name in SECTIONS:
+        row = re.search(rf"^{name}\s*\|[^|]*\|\s*(\S+)", table, re.MULTILINE)
+        if row:
+            cells.append(f"{name} {float(row.group(1)) / steps / atoms * 1e9:.0f}")
+    return " / ".join(cells)
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     for name in ("--lmp", "--mpirun", "--plugin", "--work"):
@@ -106,6 +124,7 @@ def main():
     # energy, pressure: energy and virial tallied on those steps), or e.g. `custom step temp`.
     p.add_argument("--thermo-style", default="one")
     p.add_argument("--cpu", action="store_true", help="also CPU ns per particle-step (see above)")
+    p.add_argument("--timers", action="store_true", help="also LAMMPS's timer sections (see above)")
     args = p.parse_args()
     os.makedirs(args.work, exist_ok=True)
     write_table(os.path.join(args.work, "dpd.table"))
@@ -129,6 +148,8 @@ def main():
                     continue
                 seconds, steps, atoms = float(loops[1][0]), int(loops[1][1]), int(loops[1][2])
                 cell = f"{seconds / steps / atoms * 1e9:.0f}"
+                if args.timers:
+                    cell += f" ({timers(out.stdout, steps, atoms)})"
                 if args.cpu:
                     twice, cpu2 = run(args, paths[1], ranks)
                     cell += f", {(cpu2 - cpu) / steps / atoms * 1e9:.0f}" if twice.returncode == 0 else ", failed"
