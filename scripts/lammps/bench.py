@@ -28,11 +28,15 @@ import subprocess
 GAMMA, KT, A = 4.5, 1.0, 25.0
 SIGMA = (2.0 * GAMMA * KT) ** 0.5
 
+# Ghost velocities for the styles that read them (pair dpd, pair dpd/fdt, fix shardlow); the
+# plugin's fix communicates its own, so with a conservative style alone it needs none.
+VEL = "comm_modify vel yes\n"
+
 # name -> (atom style, force field and integrator lines)
 VARIANTS = {
-    "plugin ABOBA": ("atomic", "pair_style dpd 1.0 1.0 999\npair_coeff 1 1 {a} 0.0 1.0\n"
+    "plugin ABOBA": ("atomic", VEL + "pair_style dpd 1.0 1.0 999\npair_coeff 1 1 {a} 0.0 1.0\n"
                                "fix 1 all dpd/split aboba {kt} {gamma} 1.0 4321"),
-    "plugin VV": ("atomic", "pair_style dpd 1.0 1.0 999\npair_coeff 1 1 {a} 0.0 1.0\n"
+    "plugin VV": ("atomic", VEL + "pair_style dpd 1.0 1.0 999\npair_coeff 1 1 {a} 0.0 1.0\n"
                             "fix 1 all dpd/split vv {kt} {gamma} 1.0 4321"),
     # The conservative force from a table instead of pair dpd, which draws a random number per
     # pair even at gamma = 0: the DPD force is linear in r, so a fine table is exact to ~1e-7.
@@ -42,9 +46,9 @@ VARIANTS = {
     # The plugin's own conservative style: pair dpd's force without its friction and noise.
     "plugin ABOBA, pair dpd/soft": ("atomic", "pair_style dpd/soft 1.0\npair_coeff 1 1 {a}\n"
                                               "fix 1 all dpd/split aboba {kt} {gamma} 1.0 4321"),
-    "pair dpd + fix nve": ("atomic", "pair_style dpd {kt} 1.0 4321\npair_coeff 1 1 {a} {gamma} 1.0\n"
-                                     "fix 1 all nve"),
-    "fix shardlow": ("dpd", "pair_style dpd/fdt {kt} 1.0 4321\npair_coeff 1 1 {a} {sigma} 1.0\n"
+    "pair dpd + fix nve": ("atomic", VEL + "pair_style dpd {kt} 1.0 4321\n"
+                                     "pair_coeff 1 1 {a} {gamma} 1.0\nfix 1 all nve"),
+    "fix shardlow": ("dpd", VEL + "pair_style dpd/fdt {kt} 1.0 4321\npair_coeff 1 1 {a} {sigma} 1.0\n"
                             "fix 1 all shardlow\nfix 2 all nve"),
 }
 
@@ -64,7 +68,6 @@ def lammps_input(plugin, style, lines, n, steps, warmup, thermo=None, thermo_sty
     body = lines.format(a=A, kt=KT, gamma=GAMMA, sigma=SIGMA)
     return f"""units lj
 atom_style {style}
-comm_modify vel yes
 region box block 0 {side!r} 0 {side!r} 0 {side!r}
 create_box 1 box
 create_atoms 1 random {n} 2024 NULL
