@@ -133,6 +133,12 @@ fn a_data_file_written_by_a_run_starts_the_next() {
     let next = ["run", "--scene", &scene, "--init", "end.data", "--json"];
     let v = json(&dpd(dir.path(), &next));
     assert_eq!(v["stable"], true);
+    // The file's coefficients, which the scene's a and gamma do not show, are in the report.
+    assert_eq!(
+        v["init_coefficients"],
+        serde_json::json!({"PairIJ Coeffs # dpd": ["1 1 25 4.5 1"]}),
+        "{v}"
+    );
     // Without a scene file (whose n is 100) the file's 100 particles and box are the run's;
     // an `--n` or `--density` the file contradicts is refused, naming both.
     let alone = ["run", "--init", "end.data", "--time", "0.5", "--json"];

@@ -74,12 +74,10 @@ impl Flow {
         Flow::Accept,
     ];
 
-    /// True for the flows that loop over pairs drawing random numbers.
+    /// True for the flows that loop over pairs drawing random numbers: the successive sweeps
+    /// and F (whose random force is explicit).
     pub fn is_stochastic(self) -> bool {
-        matches!(
-            self,
-            Flow::O | Flow::Bbk | Flow::T | Flow::F | Flow::L | Flow::Oa | Flow::On
-        )
+        self.is_successive_sweep() || self == Flow::F
     }
 
     /// True for the flows that visit pairs successively, so that their order matters.

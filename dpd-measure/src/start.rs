@@ -15,8 +15,16 @@ use std::path::PathBuf;
 #[derive(Clone, Debug, PartialEq)]
 pub struct InitSpec {
     pub file: PathBuf,
-    /// The GSD frame; `None` for the last, and for a data file.
-    pub frame: Option<u64>,
+    pub format: InitFormat,
+}
+
+/// What kind of file an `init` names, told by [`InitSpec::parse`] from its name.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum InitFormat {
+    /// A GSD file and its frame (`None`: the last).
+    Gsd { frame: Option<u64> },
+    /// A LAMMPS data file.
+    Data,
 }
 
 /// What a run starts from: a frame, and a data file's pair coefficients and its bonds and
@@ -64,17 +72,21 @@ impl InitSpec {
             }
             _ => (text, None),
         };
-        if !(file.ends_with(".gsd") || file.ends_with(".data")) {
+        let format = if file.ends_with(".gsd") {
+            InitFormat::Gsd { frame }
+        } else if file.ends_with(".data") {
+            InitFormat::Data
+        } else {
             return Err(ParamError::new(
                 "init",
                 text,
                 "must be a GSD file, FILE.gsd or FILE.gsd:frame, or a LAMMPS data file, \
                  FILE.data",
             ));
-        }
+        };
         Ok(InitSpec {
             file: PathBuf::from(file),
-            frame,
+            format,
         })
     }
 
@@ -82,8 +94,8 @@ impl InitSpec {
     /// file (docs/scenes.md, `init`).
     pub fn size(&self) -> Result<(usize, [f64; 3]), ParamError> {
         let bad = |message: String| ParamError::new("init", self.file.display(), message);
-        match self.file.extension().and_then(|e| e.to_str()) {
-            Some("data") => {
+        match self.format {
+            InitFormat::Data => {
                 // The header alone: the file is read in full when the run starts, and a
                 // second full parse here left ~120 bytes per particle of freed allocations in
                 // the resident set (24 000 beads).
@@ -91,8 +103,8 @@ impl InitSpec {
                     DataFile::read_size(&self.file).map_err(|e| bad(without_path(e)))?;
                 Ok((atoms, bounds.map(|[lo, hi]| hi - lo)))
             }
-            _ => {
-                let (frame, _) = self.gsd_frame()?;
+            InitFormat::Gsd { frame } => {
+                let (frame, _) = self.gsd_frame(frame)?;
                 Ok((frame.len(), frame.box_lengths))
             }
         }
@@ -107,8 +119,8 @@ impl InitSpec {
         names: &[String],
     ) -> Result<Start, ParamError> {
         let bad = |message: String| ParamError::new("init", self.file.display(), message);
-        let (k, start) = match self.file.extension().and_then(|e| e.to_str()) {
-            Some("data") => {
+        let (k, start) = match self.format {
+            InitFormat::Data => {
                 let data = DataFile::read(&self.file).map_err(|e| bad(without_path(e)))?;
                 let frame = frame_of(&data).map_err(bad)?;
                 let coefficients = pair_coefficients(&data)?;
@@ -136,8 +148,8 @@ impl InitSpec {
                 };
                 ("the file".to_string(), start)
             }
-            _ => {
-                let (frame, k) = self.gsd_frame()?;
+            InitFormat::Gsd { frame } => {
+                let (frame, k) = self.gsd_frame(frame)?;
                 if !names.is_empty() && frame.types != names {
                     return Err(ParamError::new(
                         "init: types",
@@ -173,11 +185,11 @@ impl InitSpec {
         Ok(start)
     }
 
-    /// The GSD frame and its index.
-    fn gsd_frame(&self) -> Result<(Frame, u64), ParamError> {
+    /// The GSD file's frame `frame` (`None`: the last) and its index.
+    fn gsd_frame(&self, frame: Option<u64>) -> Result<(Frame, u64), ParamError> {
         let bad = |message: String| ParamError::new("init", self.file.display(), message);
         let reader = GsdReader::open(&self.file).map_err(|e| bad(without_path(e)))?;
-        let k = match self.frame {
+        let k = match frame {
             Some(k) => k,
             None if reader.frames() > 0 => reader.frames() - 1,
             None => return Err(bad("the file has no frame".into())),

@@ -181,7 +181,7 @@ impl Simulation {
                     spec,
                     run.dt,
                     (run.seed, 1),
-                    scene.type_names(system.params().types()),
+                    scene.trajectory_names(&system),
                     origin.clone(),
                     &mut system,
                 )
@@ -359,7 +359,7 @@ impl Simulation {
     /// "2", ...
     #[getter]
     fn bond_types(&self) -> Vec<String> {
-        topology::bonded_type_names(&self.scene, &self.system, false)
+        self.scene.bonded_type_names(&self.system, false)
     }
 
     /// The angles, an (A, 3) int array of particle ids (i, j, k), j the vertex.
@@ -377,7 +377,7 @@ impl Simulation {
     /// The names of the angle types: the scene's `[[angle_types]]`, else "1", "2", ...
     #[getter]
     fn angle_types(&self) -> Vec<String> {
-        topology::bonded_type_names(&self.scene, &self.system, true)
+        self.scene.bonded_type_names(&self.system, true)
     }
 
     /// The linear chains the bonds make (molecules whose bonds form one open, unbranched
@@ -588,7 +588,7 @@ impl Simulation {
                 &spec,
                 dt,
                 (self.scene.run.seed, 1),
-                self.scene.type_names(self.system.params().types()),
+                self.scene.trajectory_names(&self.system),
                 origin,
                 &mut self.system,
             )

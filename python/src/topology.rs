@@ -4,7 +4,6 @@
 use dpd_core::bonded::Topology;
 use dpd_core::System;
 use dpd_measure::chains::linear_chains;
-use dpd_measure::Scene;
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::prelude::*;
@@ -57,25 +56,6 @@ pub fn bonded_typeid<'py>(
         (Some(t), true) => t.angles().iter().map(|a| i64::from(a.kind)).collect(),
     };
     kinds.into_pyarray(py)
-}
-
-/// The names of the bond types (`angles` false) or angle types (true): the scene's
-/// `[[bond_types]]` / `[[angle_types]]` names, else (a data file's types) "1", "2", ... as in
-/// the data file and in trajectories.
-pub fn bonded_type_names(scene: &Scene, sys: &System, angles: bool) -> Vec<String> {
-    let count = sys.topology().map_or(0, |t| match angles {
-        false => t.bond_types().len(),
-        true => t.angle_types().len(),
-    });
-    let m = &scene.molecules;
-    let named: Option<Vec<String>> = match angles {
-        false => (m.bond_types.as_ref()).map(|b| b.iter().map(|t| t.name.clone()).collect()),
-        true => (m.angle_types.as_ref()).map(|a| a.iter().map(|t| t.name.clone()).collect()),
-    };
-    match named {
-        Some(names) if names.len() == count => names,
-        _ => (1..=count).map(|t| t.to_string()).collect(),
-    }
 }
 
 /// The linear chains of `sys`'s bonds (molecules whose bonds make one open, unbranched path),

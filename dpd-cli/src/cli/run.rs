@@ -57,6 +57,8 @@ struct RunReport<'a> {
     program: Option<String>,
     results: &'a [RunResult],
     scene: &'a Scene,
+    /// [`Scene::init_coefficients`]: heading to lines.
+    init_coefficients: BTreeMap<String, Vec<String>>,
 }
 
 pub fn main(args: Args) -> ExitCode {
@@ -114,6 +116,7 @@ pub fn main(args: Args) -> ExitCode {
         program,
         results: &results,
         scene: &scene,
+        init_coefficients: scene.init_coefficients().into_iter().collect(),
     };
     if let Some(dir) = &args.profile_dir {
         if let Err(e) = write_profiles(&results, scene.observe.profile.as_ref(), dir) {

@@ -48,7 +48,7 @@ pub use interface::{Boxed, End, Observer, Setup};
 pub use neighbours::LikeNeighbours;
 pub use pair_rdf::PairRdf;
 pub use species_profile::SpeciesProfile;
-pub use trajectory::Recorder;
+pub use trajectory::{Recorder, TypeNames};
 
 use dpd_core::{ParamError, System};
 

@@ -31,8 +31,15 @@ pub struct Recorder {
     path: PathBuf,
     /// With the `image` field: the images, which need the positions after every step.
     images: Option<Images>,
-    /// The name of each type.
-    types: Vec<String>,
+    names: TypeNames,
+}
+
+/// The names a trajectory gives the particle types (GSD `particles/types`) and the bond types
+/// (`bonds/types`), each in type order ([`crate::Scene::trajectory_names`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct TypeNames {
+    pub particles: Vec<String>,
+    pub bonds: Vec<String>,
 }
 
 /// The recorder of `[trajectory]`: creates the file of the run and writes the initial state as
@@ -45,21 +52,21 @@ pub(super) fn new<'a>(
         return Ok(None);
     };
     let runs = setup.scene.run.runs;
-    let types = setup.scene.type_names(sys.params().types());
+    let names = setup.scene.trajectory_names(sys);
     let origin = setup.scene.origin(setup.dt)?;
-    let recorder = Recorder::start(spec, setup.dt, (setup.seed, runs), types, origin, sys)?;
+    let recorder = Recorder::start(spec, setup.dt, (setup.seed, runs), names, origin, sys)?;
     Ok(Some(Box::new(recorder)))
 }
 
 impl Recorder {
     /// Create the file of run `seed` and write the initial state as frame 0. `(seed, runs)`
-    /// name the file; `types` are the type names. Steps, times and images go on from `origin`
+    /// name the file; `names` name the types. Steps, times and images go on from `origin`
     /// (the default origin: 0, 0 and no image).
     pub fn start(
         spec: &TrajectorySpec,
         dt: f64,
         (seed, runs): (u64, u64),
-        types: Vec<String>,
+        names: TypeNames,
         origin: Origin,
         sys: &mut System,
     ) -> Result<Recorder, ParamError> {
@@ -78,11 +85,11 @@ impl Recorder {
             false => None,
         };
         let path = spec.path(seed, runs);
-        let names: &[&str] = match fields.contains(&Field::Observables) {
+        let logged: &[&str] = match fields.contains(&Field::Observables) {
             true => &LOG_NAMES,
             false => &[],
         };
-        let writer = Writer::create(&path, names)
+        let writer = Writer::create(&path, logged)
             .map_err(|e| ParamError::new("trajectory.file", path.display(), e.to_string()))?;
         let mut r = Recorder {
             writer,
@@ -91,14 +98,14 @@ impl Recorder {
             origin,
             path,
             images,
-            types,
+            names,
         };
         r.record(sys)?;
         Ok(r)
     }
 
     fn record(&mut self, sys: &mut System) -> Result<(), ParamError> {
-        let mut f = frame(sys, &self.fields, &self.types);
+        let mut f = frame(sys, &self.fields, &self.names);
         f.step += self.origin.step;
         f.time += self.origin.time;
         f.images = self.images.as_ref().map(|i| i.by_id().to_vec());
@@ -132,10 +139,10 @@ impl Observer for Recorder {
     fn finish(self: Box<Self>, _: &mut System, _: &End, _: &mut RunResult) {}
 }
 
-/// The system's state as a frame with type names `types`, particles in the order of their
+/// The system's state as a frame with type names `names`, particles in the order of their
 /// ids (the order in which the system was built; the storage order changes as the system
 /// sorts itself), at its own step and time (step x dt), with the system's bonds.
-fn frame(sys: &mut System, fields: &[Field], types: &[String]) -> Frame {
+fn frame(sys: &mut System, fields: &[Field], names: &TypeNames) -> Frame {
     let ids: Vec<usize> = sys.ids().iter().map(|&i| i as usize).collect();
     let in_id_order = |values: &[Vec3], scale: &dyn Fn(usize) -> f64| {
         let mut out = vec![[0.0; 3]; values.len()];
@@ -182,21 +189,22 @@ fn frame(sys: &mut System, fields: &[Field], types: &[String]) -> Frame {
         velocities,
         images: None,
         typeid,
-        types: types.to_vec(),
+        types: names.particles.clone(),
         masses: fields.contains(&Field::Mass).then_some(mass),
         log,
-        bonds: sys.topology().filter(|t| !t.bonds().is_empty()).map(bonds),
+        bonds: sys
+            .topology()
+            .filter(|t| !t.bonds().is_empty())
+            .map(|t| bonds(t, &names.bonds)),
     }
 }
 
 /// The bonds of `topology` as a frame holds them (GSD `bonds/...`, which OVITO draws), by
-/// particle id, the bond types named by number from 1 as in a LAMMPS data file.
-fn bonds(topology: &Topology) -> Bonds {
+/// particle id, the bond types named `types`.
+fn bonds(topology: &Topology, types: &[String]) -> Bonds {
     let b = topology.bonds();
     Bonds {
-        types: (1..=topology.bond_types().len())
-            .map(|t| t.to_string())
-            .collect(),
+        types: types.to_vec(),
         typeid: b.iter().map(|b| u32::from(b.kind)).collect(),
         group: b.iter().map(|b| [b.i, b.j]).collect(),
     }
@@ -230,7 +238,8 @@ mod tests {
         let mut scene = Scene::default();
         scene.geometry.n = 300;
         let mut sys = scene.system(0.05, 3).unwrap();
-        let logged = |sys: &mut System| frame(sys, &[Field::Observables], &[]).log[1].1;
+        let names = scene.trajectory_names(&sys);
+        let logged = |sys: &mut System| frame(sys, &[Field::Observables], &names).log[1].1;
         assert!(thermo(&mut sys).config_denominator <= 0.0);
         assert!(logged(&mut sys).is_nan());
         let aboba = dpd_schemes::registry::resolve("aboba").unwrap();

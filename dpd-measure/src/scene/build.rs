@@ -5,6 +5,7 @@ use super::molecules::{ChainPlan, Context};
 use super::{check, Scene};
 use crate::chains;
 use crate::data_file::same_coefficients;
+use crate::observer::TypeNames;
 use crate::start::{initial_state, name_bond, InitSpec, Origin};
 use dpd_core::bonded::{Topology, TopologyBuilder};
 use dpd_core::init::{freeze_outside, maxwell_momenta, uniform_positions};
@@ -213,6 +214,33 @@ impl Scene {
         match self.species.species {
             Some(_) => self.species.names(),
             None => (0..types as u32).map(type_name).collect(),
+        }
+    }
+
+    /// The names of `sys`'s bond types (`angles` false) or angle types (true), for a system of
+    /// this scene: the scene's `[[bond_types]]` / `[[angle_types]]` names, else (a data file's
+    /// types) "1", "2", ... as the data file numbers them.
+    pub fn bonded_type_names(&self, sys: &System, angles: bool) -> Vec<String> {
+        let count = sys.topology().map_or(0, |t| match angles {
+            false => t.bond_types().len(),
+            true => t.angle_types().len(),
+        });
+        let m = &self.molecules;
+        let named: Option<Vec<String>> = match angles {
+            false => (m.bond_types.as_ref()).map(|b| b.iter().map(|t| t.name.clone()).collect()),
+            true => (m.angle_types.as_ref()).map(|a| a.iter().map(|t| t.name.clone()).collect()),
+        };
+        match named {
+            Some(names) if names.len() == count => names,
+            _ => (1..=count).map(|t| t.to_string()).collect(),
+        }
+    }
+
+    /// The names a trajectory of `sys` (a system of this scene) gives its types.
+    pub fn trajectory_names(&self, sys: &System) -> TypeNames {
+        TypeNames {
+            particles: self.type_names(sys.params().types()),
+            bonds: self.bonded_type_names(sys, false),
         }
     }
 

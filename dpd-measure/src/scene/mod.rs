@@ -47,6 +47,7 @@ pub use section::Keys;
 pub use species::{PairSpec, Species, TypeSpec};
 pub use sweep::{Observable, SweepSpec};
 
+use crate::start::{InitFormat, InitSpec};
 use dpd_core::ParamError;
 use dpd_trajectory::lammps_data::DataFile;
 use section::{names, take, take_table, unknown};
@@ -251,27 +252,33 @@ impl Scene {
                 self.geometry.particles()
             );
         }
-        out + &table.to_string() + &self.init_coefficients()
+        out + &table.to_string() + &self.init_comments()
     }
 
-    /// Comment lines with the coefficient sections of an `init` data file, which set what the
-    /// keys above do not show (without species, the file's pair coefficients are used instead
-    /// of `a` and `gamma`); "" for another start, or a file that cannot be read (the run then
-    /// says why).
-    fn init_coefficients(&self) -> String {
-        let Some(init) = self
+    /// The coefficient sections of an `init` LAMMPS data file, each heading (as "Pair Coeffs
+    /// # dpd") with its lines as the file writes them: they set what the scene's keys do not
+    /// show (without species, the file's pair coefficients are used instead of `a` and
+    /// `gamma`). Empty for another start, or a file that cannot be read (the run then says
+    /// why).
+    pub fn init_coefficients(&self) -> Vec<(String, Vec<String>)> {
+        let data_file = self
             .geometry
             .init
             .as_deref()
-            .filter(|f| f.ends_with(".data"))
-        else {
-            return String::new();
-        };
-        let sections = DataFile::coefficient_lines(Path::new(init)).unwrap_or_default();
+            .and_then(|init| InitSpec::parse(init).ok())
+            .filter(|spec| spec.format == InitFormat::Data);
+        data_file
+            .and_then(|spec| DataFile::coefficient_lines(&spec.file).ok())
+            .unwrap_or_default()
+    }
+
+    /// [`Self::init_coefficients`] as comment lines, one per section.
+    fn init_comments(&self) -> String {
         let instead = match self.species.species {
             None => " (used instead of a and gamma)",
             Some(_) => "",
         };
+        let init = self.geometry.init.as_deref().unwrap_or_default();
         let line = |(heading, body): &(String, Vec<String>)| {
             let used = if heading.starts_with("Pair") {
                 instead
@@ -280,7 +287,7 @@ impl Scene {
             };
             format!("# {init}, {heading}{used}: {}\n", body.join("; "))
         };
-        sections.iter().map(line).collect()
+        self.init_coefficients().iter().map(line).collect()
     }
 }
 

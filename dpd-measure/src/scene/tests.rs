@@ -124,15 +124,36 @@ fn the_header_of_a_run_from_a_data_file_says_its_coefficients() {
     let data = crate::data_file::data_of(&sys, &scene.type_names(1), "t").unwrap();
     data.write(&file).unwrap();
     let init = file.display().to_string();
-    let header = Scene::from_toml(&format!("init = {init:?}\n"), "t")
-        .unwrap()
-        .to_toml();
+    let from_file = Scene::from_toml(&format!("init = {init:?}\n"), "t").unwrap();
+    let header = from_file.to_toml();
     assert!(
         header.ends_with(&format!(
             "\n# {init}, PairIJ Coeffs # dpd (used instead of a and gamma): 1 1 25 9 1\n\
              # {init}, Bond Coeffs # harmonic: 1 2 0.5\n"
         )),
         "{header}"
+    );
+    let sections = |list: &[(&str, &str)]| -> Vec<(String, Vec<String>)> {
+        list.iter()
+            .map(|(h, l)| (h.to_string(), vec![l.to_string()]))
+            .collect()
+    };
+    assert_eq!(
+        from_file.init_coefficients(),
+        sections(&[
+            ("PairIJ Coeffs # dpd", "1 1 25 9 1"),
+            ("Bond Coeffs # harmonic", "1 2 0.5")
+        ])
+    );
+    assert!(scene.init_coefficients().is_empty());
+    // The file's bond types are numbered as in the file; the scene's chains' are named.
+    let read = from_file.system(0.05, 3).unwrap();
+    assert_eq!(
+        (
+            from_file.bonded_type_names(&read, false),
+            scene.bonded_type_names(&sys, false)
+        ),
+        (vec!["1".to_string()], vec!["b".to_string()])
     );
 }
 
@@ -392,7 +413,7 @@ fn a_scene_s_chains_build_a_bonded_system() {
 }
 
 /// A melt's trajectory frames carry its bonds by particle id (GSD `bonds/...`, so that OVITO
-/// draws the chains), and the melt restarts from a frame: the scene's chains give the topology
+/// draws the chains) and its bond types by the scene's names, and the melt restarts from a frame: the scene's chains give the topology
 /// (GSD holds no coefficients), and the frame's bonds must be theirs; a scene without
 /// molecules or with other chains is refused, naming init.
 /// `sys` of `scene` written as the first frame of the GSD file `file`.
@@ -402,7 +423,7 @@ fn gsd_frame(scene: &Scene, sys: &mut dpd_core::System, file: &Path) -> std::pat
         every: 1.0,
         fields: None,
     };
-    let (names, origin) = (scene.type_names(1), crate::start::Origin::default());
+    let (names, origin) = (scene.trajectory_names(sys), crate::start::Origin::default());
     crate::observer::Recorder::start(&spec, 0.05, (3, 1), names, origin, sys).unwrap();
     spec.file
 }
@@ -419,7 +440,7 @@ fn a_melt_restarts_from_a_gsd_frame_with_its_chains() {
     let bonds = read.frame(0).unwrap().bonds.unwrap();
     assert_eq!(
         (bonds.types, bonds.typeid),
-        (vec!["1".to_string()], vec![0; 15])
+        (vec!["b".to_string()], vec![0; 15])
     );
     assert_eq!(&bonds.group[..4], [[0, 1], [1, 2], [2, 3], [4, 5]]);
     let init = format!("init = {:?}\n", file.display().to_string());
