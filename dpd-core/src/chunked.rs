@@ -1,7 +1,7 @@
 //! Order-preserving parallel flat map into reusable parts, used to build pair lists on all
 //! threads with the same result as one thread.
 
-use rayon::prelude::*;
+use crate::parallel::each_in_parallel;
 use std::ops::Range;
 
 /// A sequence stored as consecutive parts, one per chunk of the work that produced it, so that
@@ -94,7 +94,7 @@ pub(crate) fn flat_map_ordered<T: Sync, U: Send>(
     }
     out.parts.resize_with(chunks.len(), Vec::new);
     out.parts.truncate(chunks.len());
-    let run = |(chunk, part): (&[T], &mut Vec<U>)| {
+    let run = |chunk: &[T], part: &mut Vec<U>| {
         // Room for the previous fill and 3 % more, so that a part seldom grows.
         let previous = part.len();
         part.clear();
@@ -120,12 +120,15 @@ pub(crate) fn flat_map_ordered<T: Sync, U: Send>(
         let (ranges, rest) = (&chunks[g[0]..g[1]], std::mem::take(&mut parts));
         let (mine, rest) = rest.split_at_mut(ranges.len());
         parts = rest;
-        let jobs = ranges.iter().map(|r| &items[r.clone()]);
         if ranges.len() > 1 {
-            let jobs: Vec<&[T]> = jobs.collect();
-            lens.par_extend(jobs.into_par_iter().zip(mine.par_iter_mut()).map(run));
+            let mut part_lens = vec![Vec::new(); ranges.len()];
+            each_in_parallel(mine, &mut part_lens, &|k, part, part_lens| {
+                *part_lens = run(&items[ranges[k].clone()], part);
+            });
+            lens.extend(part_lens);
         } else {
-            lens.extend(jobs.zip(mine.iter_mut()).map(run));
+            let parts = ranges.iter().zip(mine.iter_mut());
+            lens.extend(parts.map(|(r, part)| run(&items[r.clone()], part)));
         }
     }
     out.starts.clear();

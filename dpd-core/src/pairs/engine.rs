@@ -3,8 +3,8 @@
 
 use crate::avx2::with_avx2;
 use crate::disjoint::Disjoint;
+use crate::parallel::map_in_parallel;
 use dpd_ir::SweepOrder;
-use rayon::prelude::*;
 use std::cell::RefCell;
 use std::ops::Range;
 
@@ -155,7 +155,7 @@ impl PairTable {
                 (group(&runs[..positions.len()]), positions.len())
             };
             if threads > 1 {
-                let sums: Vec<_> = (0..groups).into_par_iter().map(group).collect();
+                let sums = map_in_parallel(groups, &group);
                 sums.into_iter().fold(T::default(), add)
             } else {
                 (0..groups).map(group).fold(T::default(), add)
