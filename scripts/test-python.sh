@@ -7,8 +7,8 @@
 # scripts/test-all.sh. maturin builds it with the settings of the `test` profile (optimised, as
 # users' release builds are) so that it reuses what `cargo test --workspace` compiled instead of
 # compiling every dependency again: `--profile test` itself would build a test harness, but `test`
-# is `dev` with opt-level 3, and cargo identifies artifacts by their settings, not by the
-# profile's name (and the features it resolves for -p dpd-python match the workspace's:
+# is `dev` with opt-level 3 and no debug information, and cargo identifies artifacts by their
+# settings, not by the profile's name (and the features it resolves for -p dpd-python match the workspace's:
 # workspace-hack/).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -16,13 +16,10 @@ cache="${DPD_TEST_CACHE:-$HOME/.cache/dpd-test}"
 venv="$cache/python-venv"
 # maturin, the build backend, is found on PATH.
 export PATH="$venv/bin:$PATH"
-if [ ! -x "$venv/bin/mypy" ]; then
-    python3 -m venv "$venv"
-    "$venv/bin/pip" install --quiet maturin==1.8.6 numpy==2.2.6 pytest==8.3.5 mypy==1.15.0
-fi
+bash scripts/venvs.sh python
 wheels="$cache/wheels"
 rm -rf "$wheels"
-CARGO_PROFILE_DEV_OPT_LEVEL=3 MATURIN_PEP517_ARGS="--profile dev" "$venv/bin/pip" wheel --quiet \
+CARGO_PROFILE_DEV_OPT_LEVEL=3 CARGO_PROFILE_DEV_DEBUG=false MATURIN_PEP517_ARGS="--profile dev" "$venv/bin/pip" wheel --quiet \
     --no-build-isolation --no-deps --wheel-dir "$wheels" ./python
 wheel=$(ls "$wheels"/dpd-*.whl)
 # One wheel for every CPython >= 3.9 (the stable ABI), with the stubs and the PEP 561 marker.
