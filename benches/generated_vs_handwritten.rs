@@ -2,7 +2,7 @@
 //! `dpd::reference`, on the standard box (N = 500, density 3, a = 25, gamma = 4.5). Both run the
 //! same sub-flow calls with the same coefficients, so the generated step should cost the same.
 //!
-//! `cargo bench --bench generated_vs_handwritten`; results in docs/performance.md.
+//! `cargo bench -p dpd-benches --bench generated_vs_handwritten`; results in docs/performance.md.
 
 // The core's test set-up (the standard box) names the core `dpd_core`; `dpd` re-exports
 // everything it uses.

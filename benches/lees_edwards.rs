@@ -7,7 +7,7 @@
 //! - `lees-edwards/kappa=0.2`: a real shear (the images slide out of alignment, the rebuild
 //!   test allows for the slide, crossing pairs are swept sequentially).
 //!
-//! `cargo bench --bench lees_edwards`; results in docs/performance.md.
+//! `cargo bench -p dpd-benches --bench lees_edwards`; results in docs/performance.md.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use dpd::init::{cubic_box, maxwell_momenta, uniform_positions};

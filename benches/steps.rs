@@ -2,7 +2,7 @@
 //! gamma = 4.5, dt = 0.04, neighbour skin 0), on 1 thread and on 2; criterion reports
 //! particle-steps per second (throughput), so ns per particle-step is its inverse.
 //!
-//! `cargo bench --bench steps`; results in docs/performance.md.
+//! `cargo bench -p dpd-benches --bench steps`; results in docs/performance.md.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use dpd::init::equilibrium_box;
