@@ -359,7 +359,7 @@ impl Simulation {
     /// "2", ...
     #[getter]
     fn bond_types(&self) -> Vec<String> {
-        self.scene.bonded_type_names(&self.system, false)
+        self.scene.bond_type_names(&self.system)
     }
 
     /// The angles, an (A, 3) int array of particle ids (i, j, k), j the vertex.
@@ -377,7 +377,7 @@ impl Simulation {
     /// The names of the angle types: the scene's `[[angle_types]]`, else "1", "2", ...
     #[getter]
     fn angle_types(&self) -> Vec<String> {
-        self.scene.bonded_type_names(&self.system, true)
+        self.scene.angle_type_names(&self.system)
     }
 
     /// The linear chains the bonds make (molecules whose bonds form one open, unbranched

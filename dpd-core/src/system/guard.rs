@@ -74,20 +74,13 @@ impl System {
         self.drift_bound = 0.0;
         self.overstretch = None;
         step(self);
-        let (edge, skin) = (self.bx.min_length(), self.list.skin());
-        let overstretch = self.overstretch.take();
-        let reason = if let Some(o) = overstretch {
-            Some(self.overstretch_reason(o))
-        } else if !self.drift_bound.is_finite() || !finite(&self.q) || !finite(&self.p) {
-            Some("a position or momentum became non-finite".to_string())
-        } else if self.drift_bound > 0.5 * (edge - skin) {
-            Some(format!(
-                "a particle may have moved {:.3e} between two checks of the neighbour list, \
-                 more than half the box edge {edge} less the skin {skin}",
-                self.drift_bound,
-            ))
-        } else {
-            None
+        // An overstretched bond names itself; a step that went wrong otherwise names the
+        // largest bonded force, if any, as a likely cause.
+        let reason = match self.overstretch.take() {
+            Some(o) => Some(self.overstretch_reason(o)),
+            None => self
+                .motion_failure()
+                .map(|why| why + &self.largest_bonded_force_note()),
         };
         match reason {
             None => {
@@ -95,10 +88,6 @@ impl System {
                 Ok(())
             }
             Some(reason) => {
-                let note = match overstretch {
-                    None => self.largest_bonded_force_note(),
-                    Some(_) => String::new(),
-                };
                 std::mem::swap(&mut self.q, &mut backup.q);
                 std::mem::swap(&mut self.p, &mut backup.p);
                 self.restore_order(&backup.id);
@@ -117,9 +106,26 @@ impl System {
                 Err(BlowUp {
                     step: self.step,
                     scheme: scheme.to_string(),
-                    reason: reason + &note,
+                    reason,
                 })
             }
+        }
+    }
+
+    /// Why a step's motion cannot be kept, if it cannot: a position or momentum that is not
+    /// finite, or a particle that may have moved beyond the neighbour list's reach.
+    fn motion_failure(&self) -> Option<String> {
+        let (edge, skin) = (self.bx.min_length(), self.list.skin());
+        if !self.drift_bound.is_finite() || !finite(&self.q) || !finite(&self.p) {
+            Some("a position or momentum became non-finite".to_string())
+        } else if self.drift_bound > 0.5 * (edge - skin) {
+            Some(format!(
+                "a particle may have moved {:.3e} between two checks of the neighbour list, \
+                 more than half the box edge {edge} less the skin {skin}",
+                self.drift_bound,
+            ))
+        } else {
+            None
         }
     }
 

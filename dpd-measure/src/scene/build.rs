@@ -217,30 +217,26 @@ impl Scene {
         }
     }
 
-    /// The names of `sys`'s bond types (`angles` false) or angle types (true), for a system of
-    /// this scene: the scene's `[[bond_types]]` / `[[angle_types]]` names, else (a data file's
-    /// types) "1", "2", ... as the data file numbers them.
-    pub fn bonded_type_names(&self, sys: &System, angles: bool) -> Vec<String> {
-        let count = sys.topology().map_or(0, |t| match angles {
-            false => t.bond_types().len(),
-            true => t.angle_types().len(),
-        });
-        let m = &self.molecules;
-        let named: Option<Vec<String>> = match angles {
-            false => (m.bond_types.as_ref()).map(|b| b.iter().map(|t| t.name.clone()).collect()),
-            true => (m.angle_types.as_ref()).map(|a| a.iter().map(|t| t.name.clone()).collect()),
-        };
-        match named {
-            Some(names) if names.len() == count => names,
-            _ => (1..=count).map(|t| t.to_string()).collect(),
-        }
+    /// The names of `sys`'s bond types, for a system of this scene: the scene's
+    /// `[[bond_types]]` names, else (a data file's types) "1", "2", ... as the file numbers them.
+    pub fn bond_type_names(&self, sys: &System) -> Vec<String> {
+        let count = sys.topology().map_or(0, |t| t.bond_types().len());
+        let named = self.molecules.bond_types.as_ref();
+        named_or_numbered(named.map(|b| b.iter().map(|t| t.name.as_str())), count)
+    }
+
+    /// The names of `sys`'s angle types, as [`Scene::bond_type_names`] gives the bonds'.
+    pub fn angle_type_names(&self, sys: &System) -> Vec<String> {
+        let count = sys.topology().map_or(0, |t| t.angle_types().len());
+        let named = self.molecules.angle_types.as_ref();
+        named_or_numbered(named.map(|a| a.iter().map(|t| t.name.as_str())), count)
     }
 
     /// The names a trajectory of `sys` (a system of this scene) gives its types.
     pub fn trajectory_names(&self, sys: &System) -> TypeNames {
         TypeNames {
             particles: self.type_names(sys.params().types()),
-            bonds: self.bonded_type_names(sys, false),
+            bonds: self.bond_type_names(sys),
         }
     }
 
@@ -265,5 +261,16 @@ fn type_name(t: u32) -> String {
     match char::from_u32(u32::from(b'A') + t) {
         Some(c) if t < 26 => c.to_string(),
         _ => format!("T{t}"),
+    }
+}
+
+/// `named` when it names all `count` types, else "1", "2", ... "count".
+fn named_or_numbered<'a>(
+    named: Option<impl ExactSizeIterator<Item = &'a str>>,
+    count: usize,
+) -> Vec<String> {
+    match named {
+        Some(names) if names.len() == count => names.map(str::to_string).collect(),
+        _ => (1..=count).map(|t| t.to_string()).collect(),
     }
 }

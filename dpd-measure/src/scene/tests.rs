@@ -150,8 +150,8 @@ fn the_header_of_a_run_from_a_data_file_says_its_coefficients() {
     let read = from_file.system(0.05, 3).unwrap();
     assert_eq!(
         (
-            from_file.bonded_type_names(&read, false),
-            scene.bonded_type_names(&sys, false)
+            from_file.bond_type_names(&read),
+            scene.bond_type_names(&sys)
         ),
         (vec!["1".to_string()], vec!["b".to_string()])
     );
