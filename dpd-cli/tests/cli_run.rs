@@ -110,6 +110,58 @@ fn a_bad_scheme_string_is_shown_once_with_a_caret_and_escaped() {
     }
 }
 
+/// A scheme string the order analysis finds inconsistent is refused with the message naming
+/// the flag that accepts it, and `dpd run` and `dpd sweep` run it with that flag (the scene key
+/// `allow_inconsistent`, recorded in the results).
+#[test]
+fn an_inconsistent_scheme_string_runs_when_allowed_as_the_message_says() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = write(dir.path(), "tiny.toml", TINY);
+    // B's coefficients sum to 1/2.
+    let scheme = "A B(1/2) O";
+    let flag = "--allow-inconsistent";
+    let run = ["run", "--scene", &scene, "--scheme", scheme, "--json"];
+    refused(
+        &dpd(dir.path(), &run),
+        "--allow-inconsistent of dpd run, dpd sweep",
+    );
+    let v = json(&dpd(dir.path(), &[&run[..], &[flag]].concat()));
+    assert_eq!((&v["scheme"], &v["stable"]), (&scheme.into(), &true.into()));
+    assert_eq!(v["scene"]["allow_inconsistent"], true);
+    let sweep = [
+        "sweep",
+        "--scene",
+        &scene,
+        "--schemes",
+        scheme,
+        "--dt-min",
+        "0.05",
+        "--dt-max",
+        "0.1",
+        "--dt-factor",
+        "2",
+        "--json",
+        "out.json",
+        "--out",
+        "plots",
+    ];
+    refused(
+        &dpd(dir.path(), &sweep),
+        "--allow-inconsistent of dpd run, dpd sweep",
+    );
+    let out = dpd(dir.path(), &[&sweep[..], &[flag]].concat());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    let saved = std::fs::read_to_string(dir.path().join("out.json")).unwrap();
+    let points = serde_json::from_str::<serde_json::Value>(&saved).unwrap()["points"].clone();
+    let swept = points
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|p| p["scheme"] == scheme);
+    assert_eq!(swept.count(), 2, "{saved}");
+}
+
 /// A run's last state written as a LAMMPS data file starts the next run; a data file LAMMPS
 /// would refuse is refused with its line, and one whose pair coefficients the engine cannot
 /// hold names the pair.

@@ -7,7 +7,8 @@ use crate::result::{Job, RunResult};
 use crate::runner::{lock, pool, run, Control};
 use crate::scene::Scene;
 use dpd_core::{ParamError, Scheme};
-use dpd_schemes::registry::{resolve, ResolveError};
+use dpd_ir::lang::Options;
+use dpd_schemes::registry::{resolve_with, ResolveError};
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
@@ -51,15 +52,20 @@ pub struct Batch<'s> {
 }
 
 impl<'s> Batch<'s> {
-    /// Resolve the scheme of every job (each distinct one once).
+    /// Resolve the scheme of every job (each distinct one once), inconsistent scheme strings
+    /// only if the scene allows them (`allow_inconsistent`).
     pub fn new(scene: &'s Scene, jobs: Vec<Job>) -> Result<Batch<'s>, UnknownScheme> {
+        let options = Options {
+            allow_inconsistent: scene.run.allow_inconsistent,
+        };
         let mut schemes = HashMap::new();
         for job in &jobs {
             if !schemes.contains_key(&job.scheme) {
-                let scheme = resolve(&job.scheme).map_err(|source| UnknownScheme {
-                    scheme: job.scheme.clone(),
-                    source,
-                })?;
+                let scheme =
+                    resolve_with(&job.scheme, &options).map_err(|source| UnknownScheme {
+                        scheme: job.scheme.clone(),
+                        source,
+                    })?;
                 schemes.insert(job.scheme.clone(), scheme);
             }
         }

@@ -53,8 +53,6 @@ pub struct Simulation {
     /// The samples of the last `measure` call, for `measure(accumulate=True)`; dropped when
     /// dt, the state or the particles change.
     samples: Option<Samples>,
-    /// Scheme strings whose coefficients do not sum to 1 are accepted.
-    allow_inconsistent: bool,
 }
 
 /// A copy of a simulation's state (`Simulation.snapshot()`), restored bit for bit by
@@ -159,7 +157,9 @@ impl Simulation {
     #[new]
     #[pyo3(signature = (*, allow_inconsistent=false, **scene), text_signature = "(*, allow_inconsistent=False, scene=None, scheme=None, dt=None, n=None, density=None, box=None, a=None, gamma=None, kbt=None, mass=None, weight_exponent=None, seed=None, threads=None, skin=None, shear_rate=None, body_force=None, walls=None, init=None, init_reset=None, trajectory=None, time=None, average_fraction=None, sample_interval=None, runs=None, energy_balance=None, like_neighbours=None, species=None, pairs=None, bond_types=None, angle_types=None, molecules=None, rdf=None, vacf=None, profile=None, sweep=None, description=None)")]
     fn new(allow_inconsistent: bool, scene: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
-        let scene = scene_of(scene, &Keys::new())?;
+        let mut scene = scene_of(scene, &Keys::new())?;
+        // The keyword and the scene key (of a scene file) mean the same.
+        scene.run.allow_inconsistent |= allow_inconsistent;
         if let Some(file) = &scene.output.write_data {
             return Err(invalid(format!(
                 "invalid write_data = {:?}: `dpd run` writes each run's last state there; from \
@@ -169,7 +169,7 @@ impl Simulation {
         }
         let run = &scene.run;
         let mut system = scene.system(run.dt, run.seed).map_err(invalid)?;
-        let scheme = scheme_of(&run.scheme, allow_inconsistent, &system)?;
+        let scheme = scheme_of(&run.scheme, run.allow_inconsistent, &system)?;
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(run.threads)
             .build()
@@ -197,7 +197,6 @@ impl Simulation {
             origin,
             recorder,
             samples: None,
-            allow_inconsistent,
         })
     }
 
@@ -426,7 +425,7 @@ impl Simulation {
 
     #[setter]
     fn set_scheme(&mut self, scheme: String) -> PyResult<()> {
-        self.scheme = scheme_of(&scheme, self.allow_inconsistent, &self.system)?;
+        self.scheme = scheme_of(&scheme, self.scene.run.allow_inconsistent, &self.system)?;
         self.scene.run.scheme = scheme;
         Ok(())
     }

@@ -19,6 +19,10 @@ pub struct SceneFlags {
     #[arg(long)]
     #[serde(skip_serializing_if = "Option::is_none")]
     pub scheme: Option<String>,
+    /// Run scheme strings the order analysis finds inconsistent (coefficient sums other than 1)
+    #[arg(long)]
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub allow_inconsistent: bool,
     #[arg(long, allow_negative_numbers = true)]
     #[serde(skip_serializing_if = "Option::is_none")]
     pub gamma: Option<f64>,

@@ -304,7 +304,7 @@ fn consistent(apps: &[Application]) -> Vec<Diagnostic> {
         if !one {
             errors.push(Diagnostic::new(
                 format!(
-                    "inconsistent scheme: the {} sum to {sum}, not 1; accept it anyway with allow_inconsistent (a flag of dpd_scheme!, a keyword of Python's Simulation, --allow-inconsistent of dpd export)",
+                    "inconsistent scheme: the {} sum to {sum}, not 1; accept it anyway with allow_inconsistent (a flag of dpd_scheme!, a keyword of Python's Simulation, --allow-inconsistent of dpd run, dpd sweep and dpd export)",
                     g.describe()
                 ),
                 span,

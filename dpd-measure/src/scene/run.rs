@@ -5,13 +5,17 @@ use super::check::{cores, positive, require, steps_in_range, MAX_THREADS_PER_COR
 use dpd_core::ParamError;
 use serde::{Deserialize, Serialize};
 
-/// Keys `scheme`, `dt`, `time`, `average_fraction`, `sample_interval`, `seed`, `runs`,
-/// `threads`. Times in reduced time units.
+/// Keys `scheme`, `allow_inconsistent`, `dt`, `time`, `average_fraction`, `sample_interval`,
+/// `seed`, `runs`, `threads`. Times in reduced time units.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct RunSpec {
     /// Registry name or scheme string, for `dpd run`.
     pub scheme: String,
+    /// Run scheme strings whose coefficients the order analysis finds inconsistent (sums other
+    /// than 1, e.g. M-Shardlow-1 as published) instead of refusing them; registry schemes run
+    /// either way.
+    pub allow_inconsistent: bool,
     /// Time step of `dpd run`.
     pub dt: f64,
     /// Length of each run in time units; steps = round(time / dt).
@@ -35,6 +39,7 @@ impl Default for RunSpec {
     fn default() -> Self {
         RunSpec {
             scheme: "aboba".into(),
+            allow_inconsistent: false,
             dt: 0.05,
             time: 1000.0,
             average_fraction: 0.8,
