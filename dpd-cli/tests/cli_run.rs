@@ -1,7 +1,7 @@
 //! `dpd run`: the JSON object, blow-ups reported with exit code 0, bad input refused.
 use super::cli_support;
 
-use cli_support::{dpd, has_keys, json, refused, write, RUN_FIELDS, TINY};
+use cli_support::{dpd, has_keys, json, refused, two_step_sweep, write, RUN_FIELDS, TINY};
 
 #[test]
 fn run_json_has_the_documented_fields() {
@@ -128,23 +128,7 @@ fn an_inconsistent_scheme_string_runs_when_allowed_as_the_message_says() {
     let v = json(&dpd(dir.path(), &[&run[..], &[flag]].concat()));
     assert_eq!((&v["scheme"], &v["stable"]), (&scheme.into(), &true.into()));
     assert_eq!(v["scene"]["allow_inconsistent"], true);
-    let sweep = [
-        "sweep",
-        "--scene",
-        &scene,
-        "--schemes",
-        scheme,
-        "--dt-min",
-        "0.05",
-        "--dt-max",
-        "0.1",
-        "--dt-factor",
-        "2",
-        "--json",
-        "out.json",
-        "--out",
-        "plots",
-    ];
+    let sweep = two_step_sweep(&scene, scheme);
     refused(
         &dpd(dir.path(), &sweep),
         "--allow-inconsistent of dpd run, dpd sweep",

@@ -1,7 +1,7 @@
 //! `dpd sweep`: the JSON results file, CSV and plots, and resuming from the results file.
 use super::cli_support;
 
-use cli_support::{dpd, has_keys, refused, write, RUN_FIELDS, TINY};
+use cli_support::{dpd, has_keys, refused, two_step_sweep, write, RUN_FIELDS, TINY};
 use std::path::Path;
 use std::process::Output;
 
@@ -13,23 +13,7 @@ fn sweep_writes_points_and_summary_and_resumes() {
         "tiny.toml",
         &format!("{TINY}runs = 2\n[rdf]\nr_max = 1.5\n"),
     );
-    let args = [
-        "sweep",
-        "--scene",
-        &scene,
-        "--schemes",
-        "vv,aboba",
-        "--dt-min",
-        "0.05",
-        "--dt-max",
-        "0.1",
-        "--dt-factor",
-        "2",
-        "--json",
-        "out.json",
-        "--out",
-        "plots",
-    ];
+    let args = two_step_sweep(&scene, "vv,aboba");
     let out = dpd(dir.path(), &args);
     let v = results(dir.path(), &out);
     // 2 schemes x 2 dt x 2 seeds; the baseline (aboba at dt_min) is one of them.

@@ -6,6 +6,28 @@ use std::process::{Command, Output};
 /// A scene small enough for tests: 100 particles, 1 time unit, half of it averaged.
 pub const TINY: &str = "n = 100\ntime = 1.0\naverage_fraction = 0.5\n";
 
+/// The arguments of `dpd sweep` over `schemes` on `scene` at dt = 0.05 and 0.1, its results
+/// file `out.json` and its plots in `plots/`.
+pub fn two_step_sweep<'a>(scene: &'a str, schemes: &'a str) -> [&'a str; 15] {
+    [
+        "sweep",
+        "--scene",
+        scene,
+        "--schemes",
+        schemes,
+        "--dt-min",
+        "0.05",
+        "--dt-max",
+        "0.1",
+        "--dt-factor",
+        "2",
+        "--json",
+        "out.json",
+        "--out",
+        "plots",
+    ]
+}
+
 /// Write `text` as `name` into `dir`; returns the path as a string.
 pub fn write(dir: &Path, name: &str, text: &str) -> String {
     let path = dir.join(name);
