@@ -4,7 +4,7 @@
 use crate::record::PairRecord;
 use crate::soft::SoftStyle;
 use crate::{
-    Atoms, Conservative, Kernels, SweepFlow, Tags, DPD_LAMMPS_FLOW, DPD_LAMMPS_INDEX,
+    Atoms, Conservative, Kernels, Sweep, SweepFlow, Tags, DPD_LAMMPS_FLOW, DPD_LAMMPS_INDEX,
     DPD_LAMMPS_NULL, DPD_LAMMPS_TAG,
 };
 use std::ffi::{c_char, c_int, c_void};
@@ -221,11 +221,13 @@ pub unsafe extern "C" fn dpd_lammps_sweep(
             (soft_a, soft_rc, virial),
             |c, flow, v, style, virial| {
                 c.kernels.sweep(
-                    flow,
-                    h,
-                    c.key,
+                    Sweep {
+                        flow,
+                        h,
+                        key: c.key,
+                        reverse: reverse != 0,
+                    },
                     c.pairs,
-                    reverse != 0,
                     &c.atoms,
                     v,
                     style,
@@ -286,11 +288,13 @@ pub unsafe extern "C" fn dpd_lammps_sweep_recorded(
             (soft_a, soft_rc, virial),
             |c, flow, v, style, virial| {
                 c.kernels.sweep_recorded(
-                    flow,
-                    h,
-                    c.key,
+                    Sweep {
+                        flow,
+                        h,
+                        key: c.key,
+                        reverse: reverse != 0,
+                    },
                     (colour, record),
-                    reverse != 0,
                     &c.atoms,
                     v,
                     style,

@@ -70,6 +70,16 @@ pub enum SweepFlow {
     Trotter = 2,
 }
 
+/// One pairwise sweep: its flow, step length `h`, noise key `(seed, step, stream)` and
+/// direction (`reverse`: the pairs last to first).
+#[derive(Clone, Copy, Debug)]
+pub struct Sweep {
+    pub flow: SweepFlow,
+    pub h: f64,
+    pub key: (u64, u64, u8),
+    pub reverse: bool,
+}
+
 /// Status of a call: 0 for success, else what was wrong.
 pub const DPD_LAMMPS_OK: c_int = 0;
 /// A null pointer where an array or handle was required.
@@ -236,19 +246,15 @@ impl Kernels {
         Some((d.map(|c| c / r), r, 1.0 - r / rc))
     }
 
-    /// Apply the sweep `flow` of step length `h` to `pairs` in the given order (see the crate
-    /// documentation); `v` holds `3 n` doubles; T needs `conservative`, the others ignore it.
-    /// With `virial`, adds each pair's `r_ij (x) J_ij` to it ([`add_virial`]), `J_ij` the
-    /// impulse on atom i less its conservative part (the pair style's virial holds that).
+    /// Apply `sweep` to `pairs` in its order (see the crate documentation); `v` holds `3 n`
+    /// doubles; T needs `conservative`, the others ignore it. With `virial`, adds each pair's
+    /// `r_ij (x) J_ij` to it ([`add_virial`]), `J_ij` the impulse on atom i less its
+    /// conservative part (the pair style's virial holds that).
     /// Returns a `DPD_LAMMPS_*` status; on an error no velocity has changed.
-    #[allow(clippy::too_many_arguments)]
     pub fn sweep(
         &self,
-        flow: SweepFlow,
-        h: f64,
-        key: (u64, u64, u8),
+        sweep: Sweep,
         pairs: &[[c_int; 2]],
-        reverse: bool,
         atoms: &Atoms,
         v: &mut [f64],
         conservative: Option<&Conservative>,
@@ -258,7 +264,7 @@ impl Kernels {
         if status != DPD_LAMMPS_OK {
             return status;
         }
-        self.sweep_pairs(flow, h, key, pairs, reverse, atoms, v, conservative, virial)
+        self.sweep_pairs(sweep, pairs, atoms, v, conservative, virial)
     }
 
     /// [`Kernels::sweep`] over the pairs of `record` (a `dpd/soft` evaluation at the current
@@ -267,14 +273,10 @@ impl Kernels {
     /// without passing over the list or the pairs. Returns `DPD_LAMMPS_INDEX` if the record is
     /// not complete, not of these atoms or of kernels of another number of types, or `colour`
     /// is not 0 to 7.
-    #[allow(clippy::too_many_arguments)]
     pub fn sweep_recorded(
         &self,
-        flow: SweepFlow,
-        h: f64,
-        key: (u64, u64, u8),
+        sweep: Sweep,
         (colour, record): (usize, &PairRecord),
-        reverse: bool,
         atoms: &Atoms,
         v: &mut [f64],
         conservative: Option<&Conservative>,
@@ -287,7 +289,7 @@ impl Kernels {
         let Some(pairs) = record.bucket(colour, atoms.len(), self.ntypes) else {
             return DPD_LAMMPS_INDEX;
         };
-        self.sweep_pairs(flow, h, key, pairs, reverse, atoms, v, conservative, virial)
+        self.sweep_pairs(sweep, pairs, atoms, v, conservative, virial)
     }
 
     /// Apply a sweep to `pairs` (indices below `atoms.len()`, checked with `v` by
@@ -300,20 +302,16 @@ impl Kernels {
     /// A chunk's passes stay in the cache, and the pairs' order is the sweep's: the same
     /// updates, bit for bit, as one pass of each over all pairs. Returns `DPD_LAMMPS_STYLE`,
     /// changing nothing, when [`Kernels::style`] refuses `conservative`.
-    #[allow(clippy::too_many_arguments)]
     fn sweep_pairs(
         &self,
-        flow: SweepFlow,
-        h: f64,
-        key: (u64, u64, u8),
+        sweep: Sweep,
         pairs: &[[c_int; 2]],
-        reverse: bool,
         atoms: &Atoms,
         v: &mut [f64],
         conservative: Option<&Conservative>,
         mut virial: Option<&mut [f64; 6]>,
     ) -> c_int {
-        let conservative = match self.style(flow, conservative) {
+        let conservative = match self.style(sweep.flow, conservative) {
             Ok(Some(style)) => style,
             Ok(None) => return DPD_LAMMPS_OK,
             Err(status) => return status,
@@ -323,19 +321,9 @@ impl Kernels {
         let mut chunk = |pairs: &[[c_int; 2]]| {
             self.near_pairs(atoms, pairs, &mut scratch.near);
             let virial = virial.as_deref_mut();
-            self.apply(
-                flow,
-                h,
-                key,
-                reverse,
-                atoms,
-                v,
-                conservative,
-                virial,
-                &mut scratch,
-            );
+            self.apply(sweep, atoms, v, conservative, virial, &mut scratch);
         };
-        if reverse {
+        if sweep.reverse {
             pairs.chunks(CHUNK).rev().for_each(&mut chunk);
         } else {
             pairs.chunks(CHUNK).for_each(&mut chunk);
@@ -382,19 +370,21 @@ impl Kernels {
 
     /// The last three passes of a sweep over the pairs `scratch.near` within their cutoff
     /// (see [`Kernels::sweep_pairs`]).
-    #[allow(clippy::too_many_arguments)]
     fn apply(
         &self,
-        flow: SweepFlow,
-        h: f64,
-        (seed, step, stream): (u64, u64, u8),
-        reverse: bool,
+        sweep: Sweep,
         atoms: &Atoms,
         v: &mut [f64],
         conservative: Option<&Conservative>,
         mut virial: Option<&mut [f64; 6]>,
         scratch: &mut Scratch,
     ) {
+        let Sweep {
+            flow,
+            h,
+            key: (seed, step, stream),
+            reverse,
+        } = sweep;
         let Scratch { near, z, changes } = scratch;
         z.clear();
         z.resize(near.len(), 0.0);
@@ -603,11 +593,13 @@ mod tests {
         let mut v = s.v.clone();
         let mut virial = [0.0; 6];
         let status = k.sweep(
-            SweepFlow::Ou,
-            h,
-            (42, 9, 2),
+            Sweep {
+                flow: SweepFlow::Ou,
+                h,
+                key: (42, 9, 2),
+                reverse: false,
+            },
             &[[0, 1], [0, 2]],
-            false,
             &s.atoms(),
             &mut v,
             None,
@@ -663,11 +655,13 @@ mod tests {
             let k = Kernels::new(kbt, 2.0, 2, &gamma, &rc).unwrap();
             let mut v = before.clone();
             let status = k.sweep(
-                SweepFlow::Ou,
-                h,
-                (1, 2, 0),
+                Sweep {
+                    flow: SweepFlow::Ou,
+                    h,
+                    key: (1, 2, 0),
+                    reverse: false,
+                },
                 &[[0, 1]],
-                false,
                 &s.atoms(),
                 &mut v,
                 None,
@@ -740,11 +734,13 @@ mod tests {
         let sweep = |s: &Scene, pairs: &[[c_int; 2]]| {
             let mut v = s.v.clone();
             let status = k.sweep(
-                SweepFlow::Bbk,
-                0.1,
-                (1, 1, 0),
+                Sweep {
+                    flow: SweepFlow::Bbk,
+                    h: 0.1,
+                    key: (1, 1, 0),
+                    reverse: false,
+                },
                 pairs,
-                false,
                 &s.atoms(),
                 &mut v,
                 None,
@@ -772,11 +768,13 @@ mod tests {
         let pairs: [c_int; 4] = [0, 1, 1, 2];
         let mut expected = s.v.clone();
         let status = k.sweep(
-            SweepFlow::Ou,
-            0.1,
-            (3, 4, 5),
+            Sweep {
+                flow: SweepFlow::Ou,
+                h: 0.1,
+                key: (3, 4, 5),
+                reverse: false,
+            },
             &[[0, 1], [1, 2]],
-            false,
             &s.atoms(),
             &mut expected,
             None,
@@ -854,11 +852,13 @@ mod tests {
         let sweep = |v: &mut [f64], c: Option<&Conservative>, virial: Option<&mut [f64; 6]>| {
             let pairs = [[0, 1], [0, 2]];
             k.sweep(
-                SweepFlow::Trotter,
-                h,
-                (42, 9, 2),
+                Sweep {
+                    flow: SweepFlow::Trotter,
+                    h,
+                    key: (42, 9, 2),
+                    reverse: false,
+                },
                 &pairs,
-                false,
                 &s.atoms(),
                 v,
                 c,
@@ -935,11 +935,13 @@ mod tests {
                 let (mut vf, mut vs) = ([0.0; 6], [0.0; 6]);
                 let style = (flow == SweepFlow::Trotter).then_some(&style);
                 let status = k.sweep(
-                    flow,
-                    0.07,
-                    key,
+                    Sweep {
+                        flow,
+                        h: 0.07,
+                        key,
+                        reverse,
+                    },
                     &pairs,
-                    reverse,
                     &atoms,
                     &mut fast,
                     style,
@@ -1045,22 +1047,26 @@ mod tests {
                         .flat_map(|&i| neighbours(i as usize).into_iter().map(move |j| [i, j]))
                         .collect();
                     let a = k.sweep(
-                        flow,
-                        0.05,
-                        key,
+                        Sweep {
+                            flow,
+                            h: 0.05,
+                            key,
+                            reverse,
+                        },
                         &pairs,
-                        reverse,
                         &atoms,
                         &mut listed,
                         conservative,
                         Some(&mut vl),
                     );
                     let b = k.sweep_recorded(
-                        flow,
-                        0.05,
-                        key,
+                        Sweep {
+                            flow,
+                            h: 0.05,
+                            key,
+                            reverse,
+                        },
                         (c, &record),
-                        reverse,
                         &atoms,
                         &mut recorded,
                         conservative,
@@ -1076,11 +1082,13 @@ mod tests {
         let mut v = v0.clone();
         let sweep = |k: &Kernels, colour: usize, record: &PairRecord, v: &mut [f64]| {
             k.sweep_recorded(
-                SweepFlow::Ou,
-                0.05,
-                (1, 1, 0),
+                Sweep {
+                    flow: SweepFlow::Ou,
+                    h: 0.05,
+                    key: (1, 1, 0),
+                    reverse: false,
+                },
                 (colour, record),
-                false,
                 &atoms,
                 v,
                 None,
