@@ -112,7 +112,8 @@ fn a_bad_scheme_string_is_shown_once_with_a_caret_and_escaped() {
 
 /// A scheme string the order analysis finds inconsistent is refused with the message naming
 /// the flag that accepts it, and `dpd run` and `dpd sweep` run it with that flag (the scene key
-/// `allow_inconsistent`, recorded in the results).
+/// `allow_inconsistent`, recorded in the results), a sweep resuming the results file of one
+/// without it (the key chooses runs, not the physics).
 #[test]
 fn an_inconsistent_scheme_string_runs_when_allowed_as_the_message_says() {
     let dir = tempfile::tempdir().unwrap();
@@ -128,6 +129,8 @@ fn an_inconsistent_scheme_string_runs_when_allowed_as_the_message_says() {
     let v = json(&dpd(dir.path(), &[&run[..], &[flag]].concat()));
     assert_eq!((&v["scheme"], &v["stable"]), (&scheme.into(), &true.into()));
     assert_eq!(v["scene"]["allow_inconsistent"], true);
+    let earlier = dpd(dir.path(), &two_step_sweep(&scene, "aboba"));
+    assert!(earlier.status.success(), "{earlier:?}");
     let sweep = two_step_sweep(&scene, scheme);
     refused(
         &dpd(dir.path(), &sweep),
@@ -135,7 +138,11 @@ fn an_inconsistent_scheme_string_runs_when_allowed_as_the_message_says() {
     );
     let out = dpd(dir.path(), &[&sweep[..], &[flag]].concat());
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success(), "{stderr}");
+    assert!(
+        out.status.success()
+            && stderr.contains("1 already in out.json (and 1 other points it keeps)"),
+        "{stderr}"
+    );
     let saved = std::fs::read_to_string(dir.path().join("out.json")).unwrap();
     let points = serde_json::from_str::<serde_json::Value>(&saved).unwrap()["points"].clone();
     let swept = points

@@ -175,6 +175,7 @@ fn physics_difference(a: &Scene, b: &Scene) -> Option<String> {
         for key in [
             "description",
             "scheme",
+            "allow_inconsistent",
             "dt",
             "seed",
             "runs",
