@@ -21,7 +21,7 @@ phase cargo clippy --workspace --all-targets --quiet -- -D warnings
 # One invocation for the unit, integration and doc tests: a separate `cargo test --doc` resolves
 # another unit graph for the proc macros' host dependencies and rebuilt the workspace's
 # dependency graph (measured in CI: 154 s, of which the doc tests themselves ~20 s), more than
-# the examples this also builds cost (~30 CPU-seconds).
+# the examples this also builds cost (48 s of unit time at -j1, docs/notes/2026-12-07-ci-time.md).
 phase cargo test --workspace
 venvs_installed() {
     wait "$venvs" || { cat "$venvs_log"; return 1; }

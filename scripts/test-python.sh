@@ -8,8 +8,8 @@
 # users' release builds are) so that it reuses what `cargo test --workspace` compiled instead of
 # compiling every dependency again: `--profile test` itself would build a test harness, but `test`
 # is `dev` with opt-level 3 and no debug information, and cargo identifies artifacts by their
-# settings, not by the profile's name (and the features it resolves for -p dpd-python match the workspace's:
-# workspace-hack/).
+# settings, not by the profile's name (and the features it resolves for -p dpd-python match the
+# workspace's: workspace-hack/).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cache="${DPD_TEST_CACHE:-$HOME/.cache/dpd-test}"
