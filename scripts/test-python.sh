@@ -31,12 +31,18 @@ missing = {"dpd/__init__.pyi", "dpd/py.typed"} - names
 assert not missing, f"the wheel lacks {missing}: {sorted(names)}"
 PY
 "$venv/bin/pip" install --quiet --force-reinstall --no-deps "$wheel"
+# The stubs against the tests' use of the module, and a wrong type that mypy must catch: mypy
+# (one thread, ~13 s) runs beside pytest.
+stubs() {
+    "$venv/bin/mypy" --cache-dir "$cache/mypy" --no-error-summary --check-untyped-defs python/tests
+    if "$venv/bin/mypy" --cache-dir "$cache/mypy" --no-error-summary -c 'import dpd; dpd.Simulation(dt="0.05")' >/dev/null; then
+        echo "mypy accepted dpd.Simulation(dt=\"0.05\"): the stubs type nothing"
+        return 1
+    fi
+}
+stubs &
+mypy=$!
 # pytest exits with 5 when it collects no test: a failure here like any other non-zero code.
 "$venv/bin/pytest" -q python/tests docs/python.md --doctest-glob=python.md \
     -o doctest_optionflags="ELLIPSIS NORMALIZE_WHITESPACE"
-# The stubs against the tests' use of the module, and a wrong type that mypy must catch.
-"$venv/bin/mypy" --cache-dir "$cache/mypy" --no-error-summary --check-untyped-defs python/tests
-if "$venv/bin/mypy" --cache-dir "$cache/mypy" --no-error-summary -c 'import dpd; dpd.Simulation(dt="0.05")' >/dev/null; then
-    echo "mypy accepted dpd.Simulation(dt=\"0.05\"): the stubs type nothing"
-    exit 1
-fi
+wait "$mypy"

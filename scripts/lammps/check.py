@@ -110,13 +110,29 @@ def native_vv(seed=4321):
             "fix 1 all nve")
 
 
-def run_lammps(args, text, ranks, name):
+def start_lammps(args, text, ranks, name):
+    """Starts LAMMPS on the input `text` (written to <work>/<name>.in) on `ranks` ranks; finish()
+    waits for it."""
     path = os.path.join(args.work, name + ".in")
     with open(path, "w") as f:
         f.write(text)
     cmd = [args.mpirun, "-np", str(ranks), args.lmp, "-in", path, "-log", "none"]
-    out = subprocess.run(cmd, capture_output=True, text=True, cwd=args.work, timeout=600)
-    return out.returncode, out.stdout + out.stderr
+    return subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, cwd=args.work)
+
+
+def finish(process, timeout=600):
+    """The exit code and output of a process start_lammps started."""
+    try:
+        out, _ = process.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        process.kill()
+        out, _ = process.communicate()
+        return 1, out + f"\n(killed after {timeout} s)"
+    return process.returncode, out
+
+
+def run_lammps(args, text, ranks, name):
+    return finish(start_lammps(args, text, ranks, name))
 
 
 def thermo_rows(output):
@@ -324,16 +340,18 @@ def shear(args):
     stress is what the agreement needs."""
     dt, time = 0.01, args.shear_time
     steps, skip = round(time / dt), round(0.2 * time / dt)
+    # The two one-rank LAMMPS runs at once, beside the reference (each takes one core).
+    runs = {virial: start_lammps(args, shear_input(args.plugin, "aboba", dt, steps, virial), 1,
+                                 f"shear-virial-{'yes' if virial else 'no'}") for virial in (True, False)}
     cmd = [args.dpd, "run", "--scene", os.path.join(os.path.dirname(__file__), "..", "..", "scenes", "shear.toml"),
-           "--scheme", "aboba", "--dt", str(dt), "--time", str(time), "--json"]
+           "--scheme", "aboba", "--dt", str(dt), "--time", str(time), "--threads", "1", "--json"]
     out = subprocess.run(cmd, capture_output=True, text=True, timeout=3600)
     if out.returncode != 0:
         raise SystemExit(f"{' '.join(cmd)} failed: {out.stderr}")
     ref = json.loads(out.stdout)["results"][0]["viscosity"]
     theirs = (ref["shear_viscosity"], ref["shear_viscosity_error"])
     for virial in (True, False):
-        code, text = run_lammps(args, shear_input(args.plugin, "aboba", dt, steps, virial), 1,
-                                f"shear-virial-{'yes' if virial else 'no'}")
+        code, text = finish(runs[virial], timeout=3600)
         if code != 0:
             check(False, f"shear run ran: {text[-2000:]}")
             continue
@@ -773,11 +791,23 @@ def chain_mean(path):
 def melt_measure(args, name, integrator, dt, equil, steps, seed=2024):
     """A LAMMPS run of the melt from melt-eq.data: mean bond length and pressure (block
     errors) and <R_g^2> (chain_mean) over the steps after `equil`, printed; None if it failed."""
-    chains = os.path.join(args.work, "melt-chains.txt")
+    return melt_measured(start_melt_measure(args, "melt", integrator, dt, equil, steps, seed), name, dt)
+
+
+def start_melt_measure(args, label, integrator, dt, equil, steps, seed=2024):
+    """Starts melt_measure's LAMMPS run (one rank; its files named after `label`); melt_measured
+    reads it."""
+    chains = os.path.join(args.work, f"{label}-chains.txt")
     # Each chain's R_g^2 averaged over the steps after `equil` (a sample every 10 steps).
     per_chain = f"fix rg2 all ave/time 10 {steps // 10} {equil + steps} v_rg2 mode vector file {chains}"
     text = melt_input(args, integrator, equil + steps, dt, 10, seed=seed, extra=per_chain)
-    code, out = run_lammps(args, text, 1, "melt")
+    return start_lammps(args, text, 1, label), chains, equil
+
+
+def melt_measured(started, name, dt):
+    """melt_measure's statistics of the run start_melt_measure started."""
+    process, chains, equil = started
+    code, out = finish(process)
     rows = [r for r in thermo_rows(out) if r[0] > equil]
     if code != 0 or not rows:
         check(False, f"melt, {name} ran: {out[-2000:]}")
@@ -881,11 +911,12 @@ def melt(args):
         "plugin SAS with B[bond]": soft + f"fix 1 all dpd/split {identifier(SAS_BONDS)} 1.0 {GAMMA} 1.0 4321\n"
                                           "fix_modify 1 virial yes",
     }
-    results = {}
-    for name, integrator in runs.items():
-        results[name] = melt_measure(args, name, integrator, dt, equil, steps)
-        if results[name] is None:
-            return
+    # The four one-rank runs at once.
+    started = {name: start_melt_measure(args, f"melt-{k}", integrator, dt, equil, steps)
+               for k, (name, integrator) in enumerate(runs.items())}
+    results = {name: melt_measured(run, name, dt) for name, run in started.items()}
+    if None in results.values():
+        return
     # `dpd run` from the same chains: each run averages its last 80 %, the errors from the spread
     # of the runs' means.
     for scheme in ("vv", "aboba"):
