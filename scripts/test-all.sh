@@ -20,8 +20,9 @@ phase cargo fmt --all -- --check
 # Clippy lints each crate of the workspace as the test build compiles it: cargo runs clippy's
 # driver in place of rustc for the workspace's crates (RUSTC_WORKSPACE_WRAPPER with CLIPPY_ARGS,
 # what `cargo clippy -- -D warnings` sets), so every crate is compiled once instead of being
-# checked by `cargo clippy --all-targets` and then built again by `cargo test` (measured: the
-# separate clippy stage took 127-148 s of a clean run; docs/notes/2026-12-07-ci-time.md). It
+# checked by `cargo clippy --all-targets` and then built again by `cargo test` (the separate
+# clippy stage took 127-148 s of a clean run; net of the benchmarks' build below, about 70 s
+# saved, measured side by side: docs/notes/2026-12-07-ci-time.md). It
 # stays exported: the scripts' cargo builds below (the LAMMPS kernels, the Python module) reuse
 # these artifacts only under the same wrapper, and maturin's build of dpd-python, which has no
 # Rust test for `cargo test` to build, lints it there. The targets clippy checked that `cargo
