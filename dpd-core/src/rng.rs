@@ -21,6 +21,8 @@ use rand_core::RngCore;
 use rand_distr::StandardNormal;
 use ziggurat::ZIGGURAT;
 
+#[cfg(target_arch = "x86_64")]
+mod avx2;
 mod ziggurat;
 
 const M0: u32 = 0xD251_1F53;
@@ -77,69 +79,12 @@ fn philox_lanes(ctr: &mut [[u32; LANES]; 4], key: [u32; 2]) {
     }
 }
 
-/// [`philox_lanes`] in AVX2 registers, written with intrinsics because the compiler's own
-/// vectorisation of the 32 x 32 -> 64-bit products shuffles lanes across the register halves
-/// and computes the low words a second time. Each group of 8 lanes takes per product two
-/// `vpmuludq` (even and odd lanes) and shifts and blends that stay within 64-bit lanes; the
-/// two groups are independent, so their dependency chains overlap.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-fn philox_lanes_avx2(ctr: &mut [[u32; LANES]; 4], key: [u32; 2]) {
-    use std::arch::x86_64::*;
-    const GROUPS: usize = LANES / 8;
-    /// `(hi, lo)` of `a * m` in every 32-bit lane.
-    #[target_feature(enable = "avx2")]
-    #[inline]
-    fn mulhilo8(a: __m256i, m: __m256i) -> (__m256i, __m256i) {
-        let even = _mm256_mul_epu32(a, m);
-        let odd = _mm256_mul_epu32(_mm256_srli_epi64::<32>(a), m);
-        let hi = _mm256_blend_epi32::<0b1010_1010>(_mm256_srli_epi64::<32>(even), odd);
-        let lo = _mm256_blend_epi32::<0b1010_1010>(even, _mm256_slli_epi64::<32>(odd));
-        (hi, lo)
-    }
-    let load = |w: &[u32; LANES], g: usize| {
-        // SAFETY: lanes 8 g .. 8 g + 8 are within the array (g < GROUPS = LANES / 8).
-        unsafe { _mm256_loadu_si256(w[8 * g..8 * g + 8].as_ptr().cast()) }
-    };
-    let mut c: [[__m256i; 4]; GROUPS] =
-        std::array::from_fn(|g| std::array::from_fn(|w| load(&ctr[w], g)));
-    let (m0, m1) = (_mm256_set1_epi32(M0 as i32), _mm256_set1_epi32(M1 as i32));
-    let mut k = key;
-    for round in 0..10 {
-        if round > 0 {
-            k[0] = k[0].wrapping_add(W0);
-            k[1] = k[1].wrapping_add(W1);
-        }
-        let (k0, k1) = (
-            _mm256_set1_epi32(k[0] as i32),
-            _mm256_set1_epi32(k[1] as i32),
-        );
-        for c in &mut c {
-            let (hi0, lo0) = mulhilo8(c[0], m0);
-            let (hi1, lo1) = mulhilo8(c[2], m1);
-            *c = [
-                _mm256_xor_si256(_mm256_xor_si256(hi1, c[1]), k0),
-                lo1,
-                _mm256_xor_si256(_mm256_xor_si256(hi0, c[3]), k1),
-                lo0,
-            ];
-        }
-    }
-    for (g, c) in c.iter().enumerate() {
-        for (w, &v) in c.iter().enumerate() {
-            // SAFETY: as for the loads.
-            unsafe { _mm256_storeu_si256(ctr[w][8 * g..8 * g + 8].as_mut_ptr().cast(), v) };
-        }
-    }
-}
-
 /// `out[k] = pair_normal(seed, step, stream, i, j)` for `(i, j) = pair(k)`: the first Philox
 /// blocks of `LANES` pairs at a time are computed together, then each pair's first draw goes
 /// through the ziggurat's first test inline (module `ziggurat`); the 1.5 % it rejects are
 /// sampled by `rand_distr` on the pair's [`PairRng`], which draws further blocks. Bitwise the
-/// same as [`pair_normal`]. On x86_64 CPUs with AVX2 (detected at run time) the blocks are
-/// computed in AVX2 registers and the rest is compiled with AVX2; the integer results are the
-/// same.
+/// same as [`pair_normal`]. On x86_64 CPUs with AVX2 (detected at run time) all but the
+/// closure's calls and the rejected draws run in AVX2 registers (module `avx2`).
 pub fn pair_normals(
     seed: u64,
     step: u64,
@@ -150,38 +95,18 @@ pub fn pair_normals(
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("avx2") {
         // SAFETY: the feature was detected.
-        return unsafe { pair_normals_avx2(seed, step, stream, pair, out) };
+        return unsafe { avx2::pair_normals(seed, step, stream, pair, out) };
     }
-    pair_normals_with(seed, step, stream, pair, out, philox_lanes)
+    pair_normals_portable(seed, step, stream, pair, out)
 }
 
-/// [`pair_normals_with`] compiled with AVX2, on [`philox_lanes_avx2`].
-///
-/// # Safety
-/// The CPU must support AVX2.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-unsafe fn pair_normals_avx2(
+/// [`pair_normals`] on any CPU: the lanes are arrays, which the compiler vectorises in part.
+fn pair_normals_portable(
     seed: u64,
     step: u64,
     stream: u8,
     pair: impl Fn(usize) -> (u32, u32),
     out: &mut [f64],
-) {
-    // Closures inherit the enclosing AVX2 context.
-    let philox = |ctr: &mut _, key| philox_lanes_avx2(ctr, key);
-    pair_normals_with(seed, step, stream, pair, out, philox)
-}
-
-/// [`pair_normals`] with `philox` computing the blocks of `LANES` counters.
-#[inline(always)]
-fn pair_normals_with(
-    seed: u64,
-    step: u64,
-    stream: u8,
-    pair: impl Fn(usize) -> (u32, u32),
-    out: &mut [f64],
-    philox: impl Fn(&mut [[u32; LANES]; 4], [u32; 2]),
 ) {
     let head = PairRng::new(seed, step, stream, 0, 1);
     let zig = &*ZIGGURAT;
@@ -204,7 +129,7 @@ fn pair_normals_with(
             (ctr[0][l], ctr[1][l]) = (i.min(j), i.max(j));
         }
         let mut first = ctr;
-        philox(&mut first, head.key);
+        philox_lanes(&mut first, head.key);
         for (l, z) in block.iter_mut().enumerate() {
             // The first draw of the pair's stream, as `next_u64` reads it.
             let bits = u64::from(first[0][l]) | (u64::from(first[1][l]) << 32);
@@ -372,7 +297,7 @@ mod tests {
             let mut out = vec![f64::NAN; n];
             pair_normals(11, n as u64, 2, key, &mut out);
             let mut portable = vec![f64::NAN; n];
-            pair_normals_with(11, n as u64, 2, key, &mut portable, philox_lanes);
+            pair_normals_portable(11, n as u64, 2, key, &mut portable);
             for (k, (&z, &zp)) in out.iter().zip(&portable).enumerate() {
                 let (i, j) = key(k);
                 let want = pair_normal(11, n as u64, 2, i, j).to_bits();

@@ -48,6 +48,12 @@ impl Ziggurat {
         (x.abs() < self.limit[i]).then_some(x)
     }
 
+    /// The tables `x` and `limit`, for [`super::avx2`]'s lanes.
+    #[cfg(target_arch = "x86_64")]
+    pub(super) fn tables(&self) -> (&[f64; LAYERS], &[f64; LAYERS]) {
+        (&self.x, &self.limit)
+    }
+
     fn read() -> Self {
         let x = std::array::from_fn(|i| -2.0 * probe(i));
         let limit = std::array::from_fn(|i| if i + 1 < LAYERS { x[i + 1] } else { 0.0 });
