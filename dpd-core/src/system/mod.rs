@@ -416,7 +416,7 @@ impl System {
             permute(&mut w.velocity_x, order);
         }
         if let Some(b) = &mut self.bonded {
-            b.locate(&self.id);
+            b.permute(order);
         }
         // Positions changed or the list was never built: the conservative forces are stale;
         // full forces can be valid (restored from a checkpoint) and move with their particles.
