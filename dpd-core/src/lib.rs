@@ -64,6 +64,17 @@ pub use walls::Walls;
 /// Three-vector of `f64`, the type of positions, momenta and forces.
 pub type Vec3 = nalgebra::Vector3<f64>;
 
+/// The components of `v` as one slice, `[x_0, y_0, z_0, x_1, ...]`: loops over it vectorise
+/// where loops over the vectors do not.
+pub(crate) fn components(v: &[Vec3]) -> &[f64] {
+    bytemuck::cast_slice(v)
+}
+
+/// [`components`], mutable.
+pub(crate) fn components_mut(v: &mut [Vec3]) -> &mut [f64] {
+    bytemuck::cast_slice_mut(v)
+}
+
 /// 3 x 3 matrix of `f64`, the type of stress and virial tensors (row index: position
 /// component, column index: force component).
 pub type Tensor = nalgebra::Matrix3<f64>;

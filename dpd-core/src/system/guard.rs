@@ -2,11 +2,12 @@
 //! ([`System::advance`] runs the steps of a scheme through it).
 
 use super::{ImpulseVirial, System};
+use crate::avx2::with_avx2;
 use crate::boundary::LeesEdwards;
 use crate::error::BlowUp;
 use crate::parallel::on_all_threads;
 use crate::stamp::Stamp;
-use crate::{Tensor, Vec3};
+use crate::{components, Tensor, Vec3};
 use rayon::prelude::*;
 
 /// The state a failed step must not lose.
@@ -150,12 +151,14 @@ fn copy<T: Copy + Send + Sync>(to: &mut Vec<T>, from: &[T]) {
     }
 }
 
-/// Whether every component of every vector is finite.
+/// Whether every component of every vector is finite: one test per component without a branch,
+/// which the compiler vectorises (with AVX2 where the CPU has it).
 fn finite(v: &[Vec3]) -> bool {
-    let ok = |v: &Vec3| v.iter().all(|x| x.is_finite());
+    let ok = |x: &[f64]| with_avx2(|| !x.iter().fold(false, |bad, x| bad | !x.is_finite()));
+    let x = components(v);
     if on_all_threads(v.len()) {
-        v.par_iter().with_min_len(4096).all(ok)
+        x.par_chunks(3 * 4096).all(ok)
     } else {
-        v.iter().all(ok)
+        ok(x)
     }
 }
