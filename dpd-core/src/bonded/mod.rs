@@ -177,10 +177,10 @@ impl Slots {
         }
     }
 
-    /// The re-sort `v[k] <- v[order[k]]` of the particles after a sort ([`Slots::start`] and
-    /// a [`Slots::take`] for every item): `from[s]` becomes the slot before of the item now in
-    /// slot `s`, each particle's items keeping their order, and the slots are those of the new
-    /// order, as a sort would leave them.
+    /// Follow the re-sort `v[k] <- v[order[k]]` of the particles after a sort ([`Slots::start`]
+    /// and a [`Slots::take`] for every item): `from[s]` becomes the former slot of the item
+    /// that goes into slot `s`, each particle's items keep their order, and the slots end as a
+    /// sort in the new order would leave them.
     fn follow(&mut self, order: &[u32], from: &mut Vec<u32>) {
         from.clear();
         if self.per_id.is_empty() {
