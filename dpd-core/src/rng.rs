@@ -134,9 +134,7 @@ fn pair_normals_portable(
             // The first draw of the pair's stream, as `next_u64` reads it.
             let bits = u64::from(first[0][l]) | (u64::from(first[1][l]) << 32);
             *z = zig.fast(bits).unwrap_or_else(|| {
-                let mut rng = head.of_ordered(ctr[0][l], ctr[1][l]);
-                rng.preload([0, 1, 2, 3].map(|w| first[w][l]));
-                rng.normal()
+                head.rejected(ctr[0][l], ctr[1][l], [0, 1, 2, 3].map(|w| first[w][l]))
             });
         }
     }
@@ -177,6 +175,16 @@ impl PairRng {
             used: 4,
             ..*self
         }
+    }
+
+    /// The normal of pair `(lo, hi)`, `lo < hi`, in the same step, stream and seed, whose first
+    /// block `first` is already computed and whose first draw the ziggurat's first test
+    /// rejected: `rand_distr` samples it from that block on.
+    #[inline(always)]
+    fn rejected(&self, lo: u32, hi: u32, first: [u32; 4]) -> f64 {
+        let mut rng = self.of_ordered(lo, hi);
+        rng.preload(first);
+        rng.normal()
     }
 
     /// The next block. Rare in the pair passes, which preload the first block of every pair:

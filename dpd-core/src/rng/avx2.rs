@@ -96,9 +96,7 @@ pub(super) unsafe fn pair_normals(
             let l = slow.trailing_zeros() as usize;
             slow &= slow - 1;
             let (i, j) = (ids[0][l], ids[1][l]);
-            let mut rng = head.of_ordered(i.min(j), i.max(j));
-            rng.preload([0, 1, 2, 3].map(|w| first[w][l]));
-            normals[l] = rng.normal();
+            normals[l] = head.rejected(i.min(j), i.max(j), [0, 1, 2, 3].map(|w| first[w][l]));
         }
         match <&mut [f64; LANES]>::try_from(&mut *block) {
             Ok(full) => *full = normals,
