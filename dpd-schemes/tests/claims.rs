@@ -173,9 +173,9 @@ fn hand_written_schemes_have_their_claimed_deterministic_order() {
 /// kinetic temperature, taken right after them, stays at k_B T up to large steps. Measured on
 /// the standard box at Gamma = 24 (docs/design-search.md): T_K - 1 = +0.06 % at dt = 0.05 and
 /// +0.9 % at 0.105, while T_C - 1 is +10.5 % and +69 %. 40 time units give T_K averages
-/// with a spread of about 0.9 % (tests/temperature.rs), so 3.5 % is about four of them; the
-/// configurational temperature at dt = 0.1, 20 % off at least, shows that the claim is about
-/// T_K alone.
+/// with a spread of about 0.9 % (tests/temperature.rs, the runs of 2026-12-04), so 3.5 % is
+/// about four of them; the configurational temperature at dt = 0.1, 20 % off at least, shows
+/// that the claim is about T_K alone.
 #[test]
 fn lowe_keeps_the_kinetic_temperature_at_large_steps() {
     let lowe = lookup("lowe-andersen").unwrap().scheme();
