@@ -57,7 +57,7 @@ env -i PATH="$venv/bin:/usr/bin:/bin" HOME="$fresh/home" sh -c '
     ! command -v cargo && ! command -v rustc &&
     cmake -S "$1/tree" -B "$1/build" -DLAMMPS_HEADERS="$2/include/lammps" \
         -DMPI_HEADERS="$3/include" -DLAMMPS_SIZES=smallbig >/dev/null &&
-    cmake --build "$1/build" >/dev/null' sh "$fresh" "$site" "$venv"
+    cmake --build "$1/build" --parallel 2 >/dev/null' sh "$fresh" "$site" "$venv"
 plugin=$cache/dpdsplitplugin.so
 cp "$fresh/build/dpdsplitplugin.so" "$plugin"
 echo "built $plugin in a fresh directory without cargo"
