@@ -257,19 +257,31 @@ fn image_count(d: f64, l: f64, inv: f64) -> f64 {
     }
 }
 
+/// `x` in `[0, l)`: one shift by `l` ([`shift_once`]), or [`far_wrap1`] when that is not
+/// enough; a NaN stays NaN.
 #[inline(always)]
 fn wrap1(x: f64, l: f64) -> f64 {
-    let y = if x >= l {
-        x - l
-    } else if x < 0.0 {
-        x + l
-    } else {
+    if !(x >= l || x < 0.0) {
         return x;
-    };
+    }
+    let y = shift_once(x, l);
     if (0.0..l).contains(&y) {
         y
     } else {
         far_wrap1(x, l)
+    }
+}
+
+/// `x` shifted by one length `l` towards `[0, l)` if it lies outside (`x - l` at or above `l`,
+/// `x + l` below 0), else `x`: the first step of a wrap, written with selects so that loops over
+/// many coordinates vectorise (the drift's blocks).
+#[inline(always)]
+pub(crate) fn shift_once(x: f64, l: f64) -> f64 {
+    let y = if x >= l { x - l } else { x };
+    if x < 0.0 {
+        x + l
+    } else {
+        y
     }
 }
 

@@ -1,5 +1,5 @@
 use crate::avx2::with_avx2;
-use crate::boundary::PeriodicBox;
+use crate::boundary::{shift_once, PeriodicBox};
 use crate::parallel::on_all_threads;
 use crate::system::{Motion, System};
 use crate::{components, components_mut, Vec3};
@@ -191,7 +191,7 @@ fn move_periodic(
 }
 
 /// Into `moved`, the components `x + h im p` shifted once by their box length towards the
-/// box, of the mobile components (`im != 0`; the others stay as they are), and into `squares`
+/// box ([`shift_once`]), of the mobile components (`im != 0`; the others stay as they are), and into `squares`
 /// the squares of their displacements (0 for the others); whether a mobile one lies outside
 /// the box after the shift.
 #[inline(always)]
@@ -207,8 +207,7 @@ fn move_flat(
         let mobile = im != 0.0;
         let d = (h * im) * p;
         let x1 = x + d;
-        let y = if x1 >= l { x1 - l } else { x1 };
-        let y = if x1 < 0.0 { x1 + l } else { y };
+        let y = shift_once(x1, l);
         let inside = (y >= 0.0) & (y < l);
         outside |= u64::from(mobile & !inside);
         *moved = if mobile { y } else { x };
