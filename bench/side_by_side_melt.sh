@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Side-by-side cost per step on the stiff-bond melt (scenes/melt-stiff.toml: 10-bead chains,
 # harmonic K = 100, r0 = 0.7, a = 25, gamma = 4.5, density 3): `dpd run` with velocity Verlet,
-# ABOBA and the MTS scheme of docs/systems.md against LAMMPS (pair_style dpd + bond_style
-# harmonic + fix nve, bench/peers/lammps_melt.py) on the same data file, one thread, at dt
+# ABOBA and the MTS schemes MTS1 and MTS3 of docs/systems.md against LAMMPS (pair_style dpd +
+# bond_style harmonic + fix nve, bench/peers/lammps_melt.py) on the same data file, one thread, at dt
 # DT (default 0.02). The melt is equilibrated once by `dpd run` (ABOBA, 20 time units) and
 # written as a LAMMPS data file that both engines start from. The engines take turns ROUNDS
 # times (default 3); the table gives the median time per step and the median of the per-round
@@ -19,7 +19,8 @@ n=${1:-24000}
 steps=${2:-200}
 rounds=${ROUNDS:-3}
 dt=${DT:-0.02}
-mts="B[pair](1/2) (B[bond](1/8) A(1/4) B[bond](1/8))^4 O B[pair](1/2)"
+mts1="B[pair](1/2) (B[bond](1/8) A(1/4) B[bond](1/8))^4 O B[pair](1/2)"
+mts3="B[bond](1/4) A(1/2) B[bond](1/4) B[pair](1/2) O B[pair](1/2) B[bond](1/4) A(1/2) B[bond](1/4)"
 
 source bench/peers/venv.sh
 
@@ -52,10 +53,10 @@ lammps_row() {
 
 out=$work/rows
 for round in $(seq "$rounds"); do
-  for scheme in vv aboba "$mts"; do dpd_row "$n" "$scheme" "$round" >>"$out"; done
+  for scheme in vv aboba "$mts1" "$mts3"; do dpd_row "$n" "$scheme" "$round" >>"$out"; done
   for skin in 0 0.4; do lammps_row "$n" "$skin" "$round" >>"$out"; done
 done
-for scheme in vv aboba "$mts"; do dpd_row "$small" "$scheme" 0 >>"$out"; done
+for scheme in vv aboba "$mts1" "$mts3"; do dpd_row "$small" "$scheme" 0 >>"$out"; done
 for skin in 0 0.4; do lammps_row "$small" "$skin" 0 >>"$out"; done
 
 python3 - "$out" "$n" "$small" <<'PY'
@@ -71,7 +72,7 @@ for r in big:
         lammps[r["round"]] = min(lammps.get(r["round"], float("inf")), r["us_per_step"])
 rss_small = {(r["engine"], name(r)): r["max_rss_kb"] for r in rows if r["n"] == small}
 print(f"\nstiff melt, N = {n}, one thread; memory: peak RSS growth from N = {small} to N = {n}")
-print(f"{'engine':7} {'scheme':66} {'us/step':>9} {'ns/part-step':>12} {'vs LAMMPS':>9} {'B/particle':>10}  per round")
+print(f"{'engine':7} {'scheme':100} {'us/step':>9} {'ns/part-step':>12} {'vs LAMMPS':>9} {'B/particle':>10}  per round")
 for key in dict.fromkeys((r["engine"], name(r)) for r in big):
     mine = [r for r in big if (r["engine"], name(r)) == key]
     us = statistics.median(r["us_per_step"] for r in mine)
@@ -79,5 +80,5 @@ for key in dict.fromkeys((r["engine"], name(r)) for r in big):
     rss = statistics.median(r["max_rss_kb"] for r in mine)
     per = (rss - rss_small[key]) * 1024 / (n - small)
     each = " ".join(f"{x:.2f}" for x in ratios)
-    print(f"{key[0]:7} {key[1]:66} {us:>9.0f} {us * 1e3 / n:>12.0f} {statistics.median(ratios):>9.2f} {per:>10.0f}  {each}")
+    print(f"{key[0]:7} {key[1]:100} {us:>9.0f} {us * 1e3 / n:>12.0f} {statistics.median(ratios):>9.2f} {per:>10.0f}  {each}")
 PY
