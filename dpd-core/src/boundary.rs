@@ -335,6 +335,39 @@ mod tests {
         );
     }
 
+    /// The pair fill and the bonds image the difference of two positions in the box with
+    /// `near_image`: it must be `min_image` to the bit there, at the half-length ties too.
+    #[test]
+    fn near_image_is_min_image_for_two_positions_in_the_box() {
+        use rand::{Rng, SeedableRng};
+        let b = PeriodicBox::new([7.0, 3.3, 10.1]).unwrap();
+        let l = b.lengths();
+        let same = |d: Vec3| {
+            let (near, min) = (b.near_image(d), b.min_image(d));
+            (0..3).all(|k| near[k].to_bits() == min[k].to_bits())
+        };
+        let mut rng = rand::rngs::StdRng::seed_from_u64(7);
+        for _ in 0..100_000 {
+            let (q1, q2) = (
+                b.wrap(Vec3::from_fn(|k, _| rng.random_range(0.0..l[k]))),
+                b.wrap(Vec3::from_fn(|k, _| rng.random_range(0.0..l[k]))),
+            );
+            assert!(same(q1 - q2), "{q1} - {q2}");
+        }
+        for t in [
+            0.0,
+            0.5,
+            -0.5,
+            1.0 - 1e-16,
+            -(1.0 - 1e-16),
+            0.5 + 1e-16,
+            -0.5 - 1e-16,
+        ] {
+            let d = l * t;
+            assert!(same(d), "{d}");
+        }
+    }
+
     #[test]
     fn min_image_is_shortest() {
         let b = PeriodicBox::cubic(4.0).unwrap();
