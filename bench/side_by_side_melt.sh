@@ -2,8 +2,8 @@
 # Side-by-side cost per step on the stiff-bond melt (scenes/melt-stiff.toml: 10-bead chains,
 # harmonic K = 100, r0 = 0.7, a = 25, gamma = 4.5, density 3): `dpd run` with velocity Verlet,
 # ABOBA and the MTS schemes MTS1 and MTS3 of docs/systems.md against LAMMPS (pair_style dpd +
-# bond_style harmonic + fix nve, bench/peers/lammps_melt.py) on the same data file, one thread, at dt
-# DT (default 0.02). The melt is equilibrated once by `dpd run` (ABOBA, 20 time units) and
+# bond_style harmonic + fix nve, bench/peers/lammps_melt.py) on the same data file, one thread,
+# at dt DT (default 0.02). The melt is equilibrated once by `dpd run` (ABOBA, 20 time units) and
 # written as a LAMMPS data file that both engines start from. The engines take turns ROUNDS
 # times (default 3); the table gives the median time per step and the median of the per-round
 # ratios to LAMMPS at its faster skin, and the memory per particle: the growth of the peak
