@@ -28,12 +28,12 @@ pub fn drift(sys: &mut System, h: f64) {
     } = sys.motion();
     let particles = (q, p, inv_mass, mass);
     let max2 = match (shear, walls) {
-        (None, None) => in_ranges(particles, |q, p, im, m| {
+        (None, None) => in_ranges(particles, |range| {
             // Inlined by force: a closure left to the optimiser stayed a call, compiled
             // without AVX2, and its loops were not vectorised.
             with_avx2(
                 #[inline(always)]
-                || move_periodic(q, p, im, m, h, &bx),
+                || move_periodic(range, h, &bx),
             )
         }),
         (Some(le), _) => {
@@ -57,23 +57,20 @@ pub fn drift(sys: &mut System, h: f64) {
 /// The particles a drift moves: positions, momenta, inverse masses and masses.
 type Particles<'a> = (&'a mut [Vec3], &'a mut [Vec3], &'a [f64], &'a [f64]);
 
-/// `range(q, p, inv_mass, mass)` over consecutive ranges of the particles, the largest of
+/// `range(particles)` over consecutive ranges of the particles, the largest of
 /// its results, NaN if any is NaN. Large systems go on all threads: each range on its own,
 /// and the largest result does not depend on the order.
 #[inline(always)]
-fn in_ranges(
-    (q, p, inv_mass, mass): Particles,
-    range: impl Fn(&mut [Vec3], &mut [Vec3], &[f64], &[f64]) -> f64 + Sync,
-) -> f64 {
+fn in_ranges((q, p, inv_mass, mass): Particles, range: impl Fn(Particles) -> f64 + Sync) -> f64 {
     if on_all_threads(q.len()) {
         q.par_chunks_mut(4096)
             .zip(p.par_chunks_mut(4096))
             .zip(inv_mass.par_chunks(4096))
             .zip(mass.par_chunks(4096))
-            .map(|(((q, p), im), m)| range(q, p, im, m))
+            .map(|(((q, p), im), m)| range((q, p, im, m)))
             .reduce(|| 0.0, larger)
     } else {
-        range(q, p, inv_mass, mass)
+        range((q, p, inv_mass, mass))
     }
 }
 
@@ -96,16 +93,13 @@ fn move_particles(
     h: f64,
     wrap: impl Fn(&mut Vec3, &mut Vec3, f64) + Sync,
 ) -> f64 {
-    in_ranges(particles, |q, p, im, m| move_range(q, p, im, m, h, &wrap))
+    in_ranges(particles, |range| move_range(range, h, &wrap))
 }
 
 /// [`move_particles`] of one range.
 #[inline(always)]
 fn move_range(
-    q: &mut [Vec3],
-    p: &mut [Vec3],
-    inv_mass: &[f64],
-    mass: &[f64],
+    (q, p, inv_mass, mass): Particles,
     h: f64,
     wrap: &impl Fn(&mut Vec3, &mut Vec3, f64),
 ) -> f64 {
@@ -139,19 +133,12 @@ type FlatInputs<'a> = (&'a [f64], &'a [f64], &'a [f64], &'a [f64]);
 /// [`move_range`] in a periodic box, the same numbers: `BLOCK` particles at a time, over their
 /// components as flat slices and without a branch, so that the compiler vectorises the work
 /// (with AVX2 when called inside [`with_avx2`]; the loop over particles, with a test per
-/// particle and per axis, took 57 instructions a particle, this one 34). A block in which a mobile particle lands outside the box after
-/// one shift by a box length per axis (a NaN or infinite position, or a move of more than a
-/// box length) is moved again, from where it was, by [`move_range`] with
-/// [`PeriodicBox::wrap`].
+/// particle and per axis, took 57 instructions a particle, this one 34). A block in which a
+/// mobile particle lands outside the box after one shift by a box length per axis (a NaN or
+/// infinite position, or a move of more than a box length) is moved again, from where it was,
+/// by [`move_range`] with [`PeriodicBox::wrap`].
 #[inline(always)]
-fn move_periodic(
-    q: &mut [Vec3],
-    p: &mut [Vec3],
-    inv_mass: &[f64],
-    mass: &[f64],
-    h: f64,
-    bx: &PeriodicBox,
-) -> f64 {
+fn move_periodic((q, p, inv_mass, mass): Particles, h: f64, bx: &PeriodicBox) -> f64 {
     let l = bx.lengths();
     // Per component of a block: the box length and the particle's inverse mass.
     let lengths: [f64; 3 * BLOCK] = std::array::from_fn(|c| l[c % 3]);
@@ -169,7 +156,7 @@ fn move_periodic(
         let flat = (components(q), components(p), &im3[..c], &lengths[..c]);
         let outside = move_flat(flat, h, moved, squares);
         let block = if outside {
-            move_range(q, p, im, m, h, &|q, _, _| *q = bx.wrap(*q))
+            move_range((q, p, im, m), h, &|q, _, _| *q = bx.wrap(*q))
         } else {
             components_mut(q).copy_from_slice(moved);
             // `|d|^2` as `Vec3::norm_squared` sums it; each is +0 or above, or NaN: as bits,
@@ -190,10 +177,10 @@ fn move_periodic(
     largest
 }
 
-/// Into `moved`, the components `x + h im p` shifted once by their box length towards the
-/// box ([`shift_once`]), of the mobile components (`im != 0`; the others stay as they are), and into `squares`
-/// the squares of their displacements (0 for the others); whether a mobile one lies outside
-/// the box after the shift.
+/// Into `moved`, the components `x + h im p` shifted once by their box length towards the box
+/// ([`shift_once`]), of the mobile components (`im != 0`; the others stay as they are), and
+/// into `squares` the squares of their displacements (0 for the others); whether a mobile one
+/// lies outside the box after the shift.
 #[inline(always)]
 fn move_flat(
     (x, p, im, lengths): FlatInputs,
@@ -290,12 +277,11 @@ mod tests {
                 }
                 let mass: Vec<f64> = inv_mass.iter().map(|im| 1.0 / im).collect();
                 let (mut q2, mut p2) = (q.clone(), p.clone());
-                let want = move_range(&mut q2, &mut p2, &inv_mass, &mass, 0.1, &|q, _, _| {
-                    *q = bx.wrap(*q)
-                });
+                let moved = (&mut q2[..], &mut p2[..], &inv_mass[..], &mass[..]);
+                let want = move_range(moved, 0.1, &|q, _, _| *q = bx.wrap(*q));
                 for avx2 in [false, true] {
                     let (mut q1, mut p1) = (q.clone(), p.clone());
-                    let mut run = || move_periodic(&mut q1, &mut p1, &inv_mass, &mass, 0.1, &bx);
+                    let mut run = || move_periodic((&mut q1, &mut p1, &inv_mass, &mass), 0.1, &bx);
                     let got = if avx2 { with_avx2(run) } else { run() };
                     let bits = |v: &[Vec3]| -> Vec<u64> {
                         components(v).iter().map(|x| x.to_bits()).collect()
